@@ -1,0 +1,6 @@
+#pragma once
+// Sub-commands of the panelrad program. Each returns the process exit status:
+// 0 success, 1 invalid input or failed run, 2 usage error.
+namespace panelrad::cli {
+int run_check(int argc, char** argv);   // argv[0] == "check"
+}  // namespace panelrad::cli

@@ -1,0 +1,43 @@
+// panelrad command-line program: dispatches sub-commands.
+#include "commands.hpp"
+
+#include <panelrad/version.hpp>
+
+#include <cstring>
+#include <iostream>
+#include <string>
+
+namespace {
+void usage(std::ostream& os) {
+  os << "usage: panelrad <command> [options]\n"
+        "commands:\n"
+        "  check MESH | check --builtin cube|prism:K|tetrahedron|octahedron\n"
+        "      validate a closed convex polyhedral mesh (OFF or OBJ)\n"
+        "  version\n";
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    usage(std::cerr);
+    return 2;
+  }
+  const std::string cmd = argv[1];
+  try {
+    if (cmd == "check") return panelrad::cli::run_check(argc - 1, argv + 1);
+    if (cmd == "version" || cmd == "--version") {
+      std::cout << "panelrad " << panelrad::version() << "\n";
+      return 0;
+    }
+    if (cmd == "help" || cmd == "--help" || cmd == "-h") {
+      usage(std::cout);
+      return 0;
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "panelrad " << cmd << ": error: " << e.what() << "\n";
+    return 1;
+  }
+  std::cerr << "panelrad: unknown command '" << cmd << "'\n";
+  usage(std::cerr);
+  return 2;
+}

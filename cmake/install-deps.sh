@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Installs panelrad's build and test dependencies from Debian packages. Idempotent: packages
+# already present are left alone, and nothing is fetched when all are there. Needs root (or sudo).
+set -euo pipefail
+packages=(
+  build-essential cmake pkg-config
+  libcgal-dev libgmp-dev libmpfr-dev     # exact predicates and constructions (geometry/)
+  libeigen3-dev                          # vectors and dense linear algebra
+  libboost-dev                           # header-only parts used by CGAL
+  libopenmesh-dev                        # OFF/OBJ readers
+  libgtest-dev libgmock-dev              # GoogleTest
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

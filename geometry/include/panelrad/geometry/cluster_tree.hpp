@@ -1,0 +1,72 @@
+#pragma once
+// Uniform 4-way midpoint subdivision kept as the paper's cluster tree U = T_{n_0} u ... u T_{n_c}
+// (section 4, (39)-(40)). Implicit numbering: level l holds n0 * 4^l triangles; triangle k of
+// level l has children 4k .. 4k+3 on level l+1. Hence the elements (leaves, finest level L)
+// of cluster k of level l are the contiguous range [k * 4^(L-l), (k+1) * 4^(L-l)).
+#include <panelrad/geometry/mesh.hpp>
+
+#include <array>
+#include <cstddef>
+#include <span>
+#include <vector>
+
+namespace panelrad::geometry {
+
+/// One triangle of some level: a cluster tau of the paper.
+struct Cluster {
+  std::array<Vec3, 3> vertex;  ///< corners, counter-clockwise seen from outside
+  Vec3 normal;                 ///< inner unit normal n of its plane (points into the solid), (2)
+  Vec3 centre;                 ///< A(tau): circumcircle centre, exact construction rounded once, (41)
+  double radius = 0;           ///< R(tau): circumcircle radius, exact construction rounded once, (41)
+  double area = 0;
+  Index facet = 0;             ///< input facet (maximal planar polygon) it lies in
+};
+
+class ClusterTree {
+ public:
+  /// Subdivides a validated mesh (validate_closed_convex) `finest_level` times.
+  /// Throws MeshError when the tree would not fit in memory (estimate given) or level < 0.
+  ClusterTree(const TriangleMesh& validated_mesh, int finest_level);
+
+  int finest_level() const { return finest_level_; }
+  Index num_roots() const { return n0_; }                       ///< n0
+  Index num_elements() const { return level_size(finest_level_); }  ///< n = n0 4^L
+  Index level_size(int level) const { return n0_ << (2 * level); }
+  Index num_facets() const { return num_facets_; }
+
+  std::span<const Cluster> level(int l) const { return levels_[static_cast<std::size_t>(l)]; }
+  const Cluster& cluster(int l, Index k) const { return levels_[static_cast<std::size_t>(l)][static_cast<std::size_t>(k)]; }
+  /// The elements Delta_k of the current triangulation T_{n_c} (the leaves).
+  std::span<const Cluster> elements() const { return level(finest_level_); }
+
+  /// Element range [first, end) of cluster k of level l (contiguous by construction).
+  Index first_element(int l, Index k) const { return k << (2 * (finest_level_ - l)); }
+  Index end_element(int l, Index k) const { return (k + 1) << (2 * (finest_level_ - l)); }
+
+  /// Collocation point P_k: the centroid of element k, (22).
+  const Vec3& collocation_point(Index k) const { return centroid_[static_cast<std::size_t>(k)]; }
+  std::span<const Vec3> collocation_points() const { return centroid_; }
+
+  /// Mesh size h: the largest element diameter (longest edge) at the finest level (section 3).
+  double mesh_size() const { return mesh_size_; }
+  /// Diameter of the surface (largest vertex distance bound: bounding-box diagonal).
+  double diameter() const { return diameter_; }
+
+  /// Bytes held by the tree (all levels) and per finest-level element.
+  std::size_t bytes() const;
+  double bytes_per_element() const { return static_cast<double>(bytes()) / num_elements(); }
+
+  /// Estimated bytes for a given n0 and level, to refuse sizes that will not fit before allocating.
+  static std::size_t estimate_bytes(Index n0, int finest_level);
+
+ private:
+  int finest_level_ = 0;
+  Index n0_ = 0;
+  Index num_facets_ = 0;
+  double mesh_size_ = 0;
+  double diameter_ = 0;
+  std::vector<std::vector<Cluster>> levels_;
+  std::vector<Vec3> centroid_;
+};
+
+}  // namespace panelrad::geometry
