@@ -1,0 +1,9 @@
+// An outside program using the installed panelrad package.
+#include <panelrad/version.hpp>
+
+#include <iostream>
+
+int main() {
+  std::cout << "panelrad " << panelrad::version() << "\n";
+  return panelrad::version().empty() ? 1 : 0;
+}
