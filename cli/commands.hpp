@@ -3,4 +3,5 @@
 // 0 success, 1 invalid input or failed run, 2 usage error.
 namespace panelrad::cli {
 int run_check(int argc, char** argv);   // argv[0] == "check"
+int run_cube(int argc, char** argv);    // argv[0] == "cube"
 }  // namespace panelrad::cli

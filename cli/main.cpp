@@ -13,6 +13,7 @@ void usage(std::ostream& os) {
         "commands:\n"
         "  check MESH | check --builtin cube|prism:K|tetrahedron|octahedron\n"
         "      validate a closed convex polyhedral mesh (OFF or OBJ)\n"
+        "  cube [options]   the paper's cube example (Table 1; --help for options)\n"
         "  version\n";
 }
 }  // namespace
@@ -25,6 +26,7 @@ int main(int argc, char** argv) {
   const std::string cmd = argv[1];
   try {
     if (cmd == "check") return panelrad::cli::run_check(argc - 1, argv + 1);
+    // CUBE_DISPATCH
     if (cmd == "version" || cmd == "--version") {
       std::cout << "panelrad " << panelrad::version() << "\n";
       return 0;

@@ -1,0 +1,53 @@
+#pragma once
+// The paper's cube example (section 3, (31); Table 1; Tables 2-4): solve on levels min..max and
+// report, per n, the error (51), times, iterations, the Neumann ratio (36) and peak memory.
+#include <panelrad/operator_factory.hpp>
+#include <panelrad/solvers.hpp>
+
+#include <functional>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace panelrad {
+
+struct CubeRunOptions {
+  int min_level = 0;
+  int max_level = 3;
+  OperatorOptions op;
+  SolverOptions solver;
+};
+
+/// One line of the table / CSV.
+struct CubeRow {
+  std::string method, near;
+  double eta = 0;   ///< fast only
+  int mu = 0;
+  int degree = 0;   ///< fast only
+  Index n = 0;
+  double max_error = 0;       ///< max_k |u(P_k) - u_n(P_k)|, (51)
+  double error_ratio = 0;     ///< previous level's error / this one (Table 1 "Ratio"), 0 for the first
+  double setup_s = 0;         ///< refinement + cluster tree + operator (matrix or near/far field)
+  double emissivity_s = 0;    ///< manufacturing E = u - K u (test data, not part of setup)
+  double solve_s = 0;
+  int iterations = 0;
+  double conv_ratio = 0;      ///< (36), Neumann
+  double peak_rss_mb = 0;
+  double operator_mb = 0;     ///< bytes stored by the operator
+  double per_product_s = 0;   ///< solve time / products
+};
+
+/// Runs the levels in order; `on_row` (if set) sees each row as soon as it is done.
+std::vector<CubeRow> run_paper_cube(const CubeRunOptions& options,
+                                    const std::function<void(const CubeRow&)>& on_row = {});
+
+/// CSV header: method,near,eta,mu,degree,n,max_error,setup_s,solve_s,iterations,conv_ratio,peak_rss_mb
+std::string cube_csv_header();
+std::string cube_csv_line(const CubeRow& row);
+/// Writes the CSV whole or not at all (temporary file, then rename). Throws std::runtime_error.
+void write_cube_csv(const std::vector<CubeRow>& rows, const std::string& path);
+/// Prints the table in the style of Table 1 (dense) or Tables 2-4 (fast).
+void print_cube_header(std::ostream& os, const CubeRunOptions& options);
+void print_cube_row(std::ostream& os, const CubeRow& row);
+
+}  // namespace panelrad

@@ -1,0 +1,85 @@
+#pragma once
+// The fast product K_n v of section 4 (panel clustering, Hackbusch & Nowak): for each collocation
+// point P_i the minimal admissible covering (42) of the surface by clusters of the tree U (40):
+// admissible clusters (41) are taken whole and integrated by the degree-M Taylor far field
+// (44)-(48); non-admissible leaves form the near field (43), integrated once at setup and stored
+// sparse. Clusters coplanar with P_i contribute exactly 0 and are skipped; rows with rho = 0 too.
+#include <panelrad/collocation.hpp>
+#include <panelrad/far_field.hpp>
+#include <panelrad/linear_operator.hpp>
+#include <panelrad/near_field.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace panelrad {
+
+struct FastOptions {
+  double eta = 0.2;   ///< admissibility parameter of (41), in (0, 1)
+  int degree = 2;     ///< Taylor degree M of (44), 0..12
+  NearFieldOptions near;
+  /// Far-field coefficients are stored when they take at most this many bytes (0: automatic,
+  /// half of the available memory); otherwise they are recomputed in every product.
+  std::size_t far_storage_limit = 0;
+};
+
+/// What setup found and stored (issue: report the counts).
+struct FastStatistics {
+  std::size_t near_pairs = 0;          ///< (P_i, element) pairs in the near field
+  std::size_t far_pairs = 0;           ///< (P_i, cluster) pairs in the far field
+  std::size_t skipped_coplanar = 0;    ///< clusters skipped as coplanar with P_i (whole subtrees)
+  std::size_t skipped_rows = 0;        ///< rows with rho(P_i) = 0, not computed
+  bool far_stored = false;             ///< coefficients stored (true) or recomputed per product
+  std::size_t bytes = 0;               ///< bytes held by the operator
+  double covering_s = 0, near_s = 0, far_s = 0;  ///< setup stages
+};
+
+class FastOperator final : public RadiosityOperator {
+ public:
+  FastOperator(const Collocation& collocation, const FastOptions& options);
+
+  geometry::Index size() const override { return n_; }
+  void apply(const Eigen::VectorXd& v, Eigen::VectorXd& y) const override;
+  std::string name() const override { return "fast"; }
+  std::size_t bytes() const override { return stats_.bytes; }
+  const FastStatistics& statistics() const { return stats_; }
+  const FastOptions& options() const { return options_; }
+
+  /// Cluster ids of the far field and element ids of the near field of row i (for tests: the
+  /// covering plus the skipped coplanar clusters must partition the surface). Cluster id =
+  /// level_offset(l) + k.
+  std::vector<geometry::Index> far_clusters(geometry::Index i) const;
+  std::vector<geometry::Index> near_elements(geometry::Index i) const;
+  /// Global id of cluster k of level l and its inverse.
+  geometry::Index cluster_id(int level, geometry::Index k) const { return level_offset_[static_cast<std::size_t>(level)] + k; }
+  std::pair<int, geometry::Index> cluster_of_id(geometry::Index id) const;
+
+ private:
+  void compute_moments(const Eigen::VectorXd& v, std::vector<double>& moments) const;
+  void far_coefficients(geometry::Index i, geometry::Index cluster, double* c) const;
+
+  std::shared_ptr<const geometry::ClusterTree> tree_;
+  FastOptions options_;
+  geometry::Index n_ = 0;
+  int terms_ = 0;                                 // (M+1)(M+2)/2
+  std::vector<geometry::Index> level_offset_;     // first global id of each level
+  std::vector<double> rho_;                       // rho(P_i)
+  std::vector<Vec3> point_, normal_;              // P_i, n_P
+  std::vector<PlaneFrame> frame_;                 // per cluster: origin A(tau), axes of its plane
+  std::vector<std::array<double, 2>> to_parent_;  // per non-root cluster: its A in parent's frame
+  std::vector<double> element_moments_;           // per element: Int_Delta x^p y^q dS about A(Delta)
+  // Near field (CSR over rows): element index and rho_i/pi Int G.
+  std::vector<std::int64_t> near_start_;
+  std::vector<geometry::Index> near_col_;
+  std::vector<double> near_val_;
+  // Far field (CSR over rows): cluster id and, when stored, the rho-scaled Taylor coefficients.
+  std::vector<std::int64_t> far_start_;
+  std::vector<geometry::Index> far_cluster_;
+  std::vector<double> far_coef_;
+  FastStatistics stats_;
+};
+
+}  // namespace panelrad

@@ -1,0 +1,58 @@
+#pragma once
+// Solvers of (I - K_n) u_n = E_n, (32), over the RadiosityOperator interface: the Neumann
+// iteration (34) with its convergence ratio (36), restarted GMRES, and dense LU (direct baseline).
+#include <panelrad/dense_operator.hpp>
+#include <panelrad/linear_operator.hpp>
+
+#include <Eigen/Core>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace panelrad {
+
+enum class SolverKind { neumann, gmres, lu };
+SolverKind parse_solver(const std::string& name);  ///< "neumann" | "gmres" | "lu"
+const char* to_string(SolverKind kind);
+
+struct SolverOptions {
+  SolverKind kind = SolverKind::neumann;
+  /// Stop when the estimated error ||u_n - u^(k)||_inf <= tolerance * ||u^(k)||_inf. Tie it to the
+  /// discretization error: there is no point in iterating far below it.
+  double tolerance = 1e-10;
+  int max_iterations = 1000;
+  int gmres_restart = 60;
+};
+
+struct SolveResult {
+  Eigen::VectorXd u;
+  std::string solver;
+  int iterations = 0;              ///< products with K_n
+  double convergence_ratio = 0;    ///< Neumann: ratio (36), estimated by successive differences
+  std::vector<double> ratio_history;
+  double error_estimate = 0;       ///< bound on ||u_n - u||_inf from the iteration
+  double residual = 0;             ///< ||E - (I - K) u||_inf / ||E||_inf, one extra product
+  double seconds = 0;
+};
+
+/// Thrown when an iteration does not reach its tolerance: says how far it got.
+class SolverError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Neumann iteration (34), u^(0) = 0: u^(k+1) = E + K u^(k).
+SolveResult solve_neumann(const RadiosityOperator& K, const Eigen::VectorXd& E, const SolverOptions& options);
+/// Restarted GMRES on (I - K) u = E; stops on the relative residual, mapped to an error bound
+/// with ||(I-K)^-1|| <= 1/(1 - max rho) (paper (11)).
+SolveResult solve_gmres(const RadiosityOperator& K, const Eigen::VectorXd& E, const SolverOptions& options,
+                        double max_reflectivity);
+/// Dense LU with partial pivoting of I - K_n (Eigen).
+SolveResult solve_lu(const DenseOperator& K, const Eigen::VectorXd& E);
+
+/// Dispatch on options.kind; LU needs a DenseOperator (std::invalid_argument otherwise).
+SolveResult solve(const RadiosityOperator& K, const Eigen::VectorXd& E, const SolverOptions& options,
+                  double max_reflectivity);
+
+}  // namespace panelrad

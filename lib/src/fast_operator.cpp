@@ -1,0 +1,260 @@
+#include <panelrad/fast_operator.hpp>
+#include <panelrad/geometry/admissibility.hpp>
+#include <panelrad/kernel.hpp>
+#include <panelrad/resources.hpp>
+
+#include <algorithm>
+#include <sstream>
+#include <stdexcept>
+
+namespace panelrad {
+
+using geometry::Cluster;
+using geometry::Index;
+
+namespace {
+
+/// Walks the cluster tree for collocation point P (facet fP) and reports the minimal admissible
+/// covering (42): admissible clusters (41) whole, non-admissible leaves as near field; clusters
+/// in P's own facet are coplanar with P (G = 0, section 4.2 case (a)) and skipped with their subtree.
+template <class Far, class Near, class Skip>
+void cover(const geometry::ClusterTree& tree, const Vec3& P, Index fP, double eta, Far&& far, Near&& near,
+           Skip&& skip) {
+  const int L = tree.finest_level();
+  struct Item {
+    int level;
+    Index k;
+  };
+  Item stack[4 * 64 + 8];
+  int top = 0;
+  for (Index root = tree.num_roots() - 1; root >= 0; --root) {
+    stack[top++] = {0, root};
+    while (top > 0) {
+      const Item it = stack[--top];
+      const Cluster& c = tree.cluster(it.level, it.k);
+      if (c.facet == fP) {
+        skip();
+      } else if (geometry::is_admissible(P, c.centre, c.radius, eta)) {
+        far(it.level, it.k);
+      } else if (it.level == L) {
+        near(it.k);
+      } else {
+        for (Index child = 3; child >= 0; --child) stack[top++] = {it.level + 1, 4 * it.k + child};
+      }
+    }
+  }
+}
+
+}  // namespace
+
+FastOperator::FastOperator(const Collocation& collocation, const FastOptions& options)
+    : tree_(collocation.shared_tree()), options_(options) {
+  if (!(options_.eta > 0 && options_.eta < 1))
+    throw std::invalid_argument("fast method: eta = " + std::to_string(options_.eta) + " is outside (0, 1)");
+  if (options_.degree < 0 || options_.degree > 12)
+    throw std::invalid_argument("fast method: degree M = " + std::to_string(options_.degree) + " is outside [0, 12]");
+  const geometry::ClusterTree& tree = *tree_;
+  const int L = tree.finest_level();
+  const int T = terms_ = num_taylor_terms(options_.degree);
+  const int M = options_.degree;
+  n_ = tree.num_elements();
+  Stopwatch clock;
+
+  // Cluster ids, plane frames about A(tau), offsets to the parent, element moments (48).
+  level_offset_.resize(static_cast<std::size_t>(L) + 2);
+  level_offset_[0] = 0;
+  for (int l = 0; l <= L; ++l) level_offset_[static_cast<std::size_t>(l) + 1] = level_offset_[static_cast<std::size_t>(l)] + tree.level_size(l);
+  const Index num_clusters = level_offset_.back();
+  frame_.resize(static_cast<std::size_t>(num_clusters));
+  to_parent_.assign(static_cast<std::size_t>(num_clusters), {0.0, 0.0});
+  for (int l = 0; l <= L; ++l) {
+    const Index m = tree.level_size(l);
+#pragma omp parallel for schedule(static)
+    for (Index k = 0; k < m; ++k) {
+      const Cluster& c = tree.cluster(l, k);
+      const Index id = cluster_id(l, k);
+      frame_[static_cast<std::size_t>(id)] = make_plane_frame(c.centre, c.normal);
+      if (l > 0) to_parent_[static_cast<std::size_t>(id)] = frame_[static_cast<std::size_t>(cluster_id(l - 1, k / 4))].local(c.centre);
+    }
+  }
+  element_moments_.resize(static_cast<std::size_t>(n_) * static_cast<std::size_t>(T));
+#pragma omp parallel for schedule(static)
+  for (Index e = 0; e < n_; ++e) {
+    const Cluster& c = tree.cluster(L, e);
+    triangle_moments(frame_[static_cast<std::size_t>(cluster_id(L, e))], c.vertex[0], c.vertex[1], c.vertex[2], M,
+                     &element_moments_[static_cast<std::size_t>(e) * static_cast<std::size_t>(T)]);
+  }
+  rho_.resize(static_cast<std::size_t>(n_));
+  point_.resize(static_cast<std::size_t>(n_));
+  normal_.resize(static_cast<std::size_t>(n_));
+  for (Index i = 0; i < n_; ++i) {
+    rho_[static_cast<std::size_t>(i)] = collocation.reflectivity()[i];
+    point_[static_cast<std::size_t>(i)] = collocation.collocation_point(i);
+    normal_[static_cast<std::size_t>(i)] = collocation.normal(i);
+  }
+
+  // Pass 1: the covering of every row, counted (rows with rho = 0 are not computed).
+  std::vector<std::int64_t> near_count(static_cast<std::size_t>(n_) + 1, 0), far_count(static_cast<std::size_t>(n_) + 1, 0);
+  std::size_t skipped = 0, skipped_rows = 0;
+#pragma omp parallel for schedule(dynamic, 64) reduction(+ : skipped, skipped_rows)
+  for (Index i = 0; i < n_; ++i) {
+    if (rho_[static_cast<std::size_t>(i)] == 0) {
+      ++skipped_rows;
+      continue;
+    }
+    std::int64_t nn = 0, nf = 0;
+    cover(tree, point_[static_cast<std::size_t>(i)], collocation.facet(i), options_.eta,
+          [&](int, Index) { ++nf; }, [&](Index) { ++nn; }, [&]() { ++skipped; });
+    near_count[static_cast<std::size_t>(i) + 1] = nn;
+    far_count[static_cast<std::size_t>(i) + 1] = nf;
+  }
+  near_start_.resize(near_count.size());
+  far_start_.resize(far_count.size());
+  near_start_[0] = far_start_[0] = 0;
+  for (std::size_t i = 1; i < near_count.size(); ++i) {
+    near_start_[i] = near_start_[i - 1] + near_count[i];
+    far_start_[i] = far_start_[i - 1] + far_count[i];
+  }
+  stats_.near_pairs = static_cast<std::size_t>(near_start_.back());
+  stats_.far_pairs = static_cast<std::size_t>(far_start_.back());
+  stats_.skipped_coplanar = skipped;
+  stats_.skipped_rows = skipped_rows;
+
+  // Memory: refuse before allocating what cannot fit; store far coefficients only when they fit.
+  const std::size_t near_bytes = stats_.near_pairs * (sizeof(Index) + sizeof(double));
+  const std::size_t far_list_bytes = stats_.far_pairs * sizeof(Index);
+  const std::size_t far_coef_bytes = stats_.far_pairs * static_cast<std::size_t>(T) * sizeof(double);
+  const std::size_t avail = available_memory_bytes();
+  if (near_bytes + far_list_bytes > avail / 10 * 9) {
+    std::ostringstream os;
+    os << "fast operator for n = " << n_ << " needs " << format_bytes(static_cast<double>(near_bytes + far_list_bytes))
+       << " for its near and far field lists but only " << format_bytes(static_cast<double>(avail))
+       << " is available; use fewer levels or a larger eta";
+    throw std::runtime_error(os.str());
+  }
+  const std::size_t limit = options_.far_storage_limit ? options_.far_storage_limit : avail / 2;
+  stats_.far_stored = far_coef_bytes <= limit;
+  stats_.covering_s = clock.seconds();
+
+  // Pass 2: fill. Each row writes only its own slots: identical for any thread count.
+  near_col_.resize(stats_.near_pairs);
+  near_val_.resize(stats_.near_pairs);
+  far_cluster_.resize(stats_.far_pairs);
+  if (stats_.far_stored) far_coef_.resize(stats_.far_pairs * static_cast<std::size_t>(T));
+  const NearFieldIntegrator integrate_near(options_.near, tree.mesh_size());
+  clock.restart();
+#pragma omp parallel for schedule(dynamic, 64)
+  for (Index i = 0; i < n_; ++i) {
+    const double rho = rho_[static_cast<std::size_t>(i)];
+    if (rho == 0) continue;
+    const Vec3& P = point_[static_cast<std::size_t>(i)];
+    const Vec3& nP = normal_[static_cast<std::size_t>(i)];
+    std::int64_t jn = near_start_[static_cast<std::size_t>(i)], jf = far_start_[static_cast<std::size_t>(i)];
+    cover(
+        tree, P, collocation.facet(i), options_.eta,
+        [&](int l, Index k) { far_cluster_[static_cast<std::size_t>(jf++)] = cluster_id(l, k); },
+        [&](Index e) {
+          near_col_[static_cast<std::size_t>(jn)] = e;
+          near_val_[static_cast<std::size_t>(jn++)] = rho * integrate_near(P, nP, tree.cluster(L, e));  // (43), first sum
+        },
+        []() {});
+  }
+  stats_.near_s = clock.seconds();
+  clock.restart();
+  if (stats_.far_stored) {
+#pragma omp parallel for schedule(dynamic, 64)
+    for (Index i = 0; i < n_; ++i)
+      for (std::int64_t j = far_start_[static_cast<std::size_t>(i)]; j < far_start_[static_cast<std::size_t>(i) + 1]; ++j)
+        far_coefficients(i, far_cluster_[static_cast<std::size_t>(j)], &far_coef_[static_cast<std::size_t>(j) * static_cast<std::size_t>(T)]);
+  }
+  stats_.far_s = clock.seconds();
+  stats_.bytes = near_col_.size() * sizeof(Index) + near_val_.size() * sizeof(double) +
+                 far_cluster_.size() * sizeof(Index) + far_coef_.size() * sizeof(double) +
+                 (near_start_.size() + far_start_.size()) * sizeof(std::int64_t) + frame_.size() * sizeof(PlaneFrame) +
+                 to_parent_.size() * sizeof(to_parent_[0]) + element_moments_.size() * sizeof(double) +
+                 static_cast<std::size_t>(num_clusters) * static_cast<std::size_t>(T) * sizeof(double) /* moments per product */;
+}
+
+std::pair<int, Index> FastOperator::cluster_of_id(Index id) const {
+  const auto it = std::upper_bound(level_offset_.begin(), level_offset_.end(), id);
+  const int level = static_cast<int>(it - level_offset_.begin()) - 1;
+  return {level, id - level_offset_[static_cast<std::size_t>(level)]};
+}
+
+// rho(P_i)/pi times the Taylor coefficients of G(P_i, .) about A(tau), (44)-(45).
+void FastOperator::far_coefficients(Index i, Index cluster, double* c) const {
+  kernel_taylor_coefficients(point_[static_cast<std::size_t>(i)], normal_[static_cast<std::size_t>(i)],
+                             frame_[static_cast<std::size_t>(cluster)], options_.degree, c);
+  const double scale = rho_[static_cast<std::size_t>(i)] / pi;
+  for (int t = 0; t < terms_; ++t) c[t] *= scale;
+}
+
+// Moments Int_tau v_n(Q) x^p y^q dS about A(tau) for every cluster (48): exact per element, then
+// gathered up the tree with a shift of centre. O(n) per product.
+void FastOperator::compute_moments(const Eigen::VectorXd& v, std::vector<double>& moments) const {
+  const geometry::ClusterTree& tree = *tree_;
+  const int L = tree.finest_level();
+  const std::size_t T = static_cast<std::size_t>(terms_);
+  moments.assign(static_cast<std::size_t>(level_offset_.back()) * T, 0.0);
+  const std::size_t leaf0 = static_cast<std::size_t>(level_offset_[static_cast<std::size_t>(L)]);
+#pragma omp parallel for schedule(static)
+  for (Index e = 0; e < n_; ++e) {
+    const double ve = v[e];
+    const double* g = &element_moments_[static_cast<std::size_t>(e) * T];
+    double* m = &moments[(leaf0 + static_cast<std::size_t>(e)) * T];
+    for (std::size_t t = 0; t < T; ++t) m[t] = ve * g[t];
+  }
+  for (int l = L - 1; l >= 0; --l) {
+    const Index size = tree.level_size(l);
+#pragma omp parallel for schedule(static)
+    for (Index k = 0; k < size; ++k) {
+      double* m = &moments[static_cast<std::size_t>(cluster_id(l, k)) * T];
+      for (Index c = 0; c < 4; ++c) {
+        const Index child = cluster_id(l + 1, 4 * k + c);
+        const auto& d = to_parent_[static_cast<std::size_t>(child)];
+        shift_moments_add(&moments[static_cast<std::size_t>(child) * T], d[0], d[1], options_.degree, m);
+      }
+    }
+  }
+}
+
+void FastOperator::apply(const Eigen::VectorXd& v, Eigen::VectorXd& y) const {
+  if (v.size() != n_) throw std::invalid_argument("FastOperator::apply: vector size differs from n");
+  std::vector<double> moments;
+  compute_moments(v, moments);
+  y.resize(n_);
+  const std::size_t T = static_cast<std::size_t>(terms_);
+#pragma omp parallel
+  {
+    std::vector<double> c(T);
+#pragma omp for schedule(dynamic, 256)
+    for (Index i = 0; i < n_; ++i) {
+      double sum = 0;
+      for (std::int64_t j = near_start_[static_cast<std::size_t>(i)]; j < near_start_[static_cast<std::size_t>(i) + 1]; ++j)
+        sum += near_val_[static_cast<std::size_t>(j)] * v[near_col_[static_cast<std::size_t>(j)]];
+      for (std::int64_t j = far_start_[static_cast<std::size_t>(i)]; j < far_start_[static_cast<std::size_t>(i) + 1]; ++j) {
+        const Index cl = far_cluster_[static_cast<std::size_t>(j)];
+        const double* coef;
+        if (stats_.far_stored) {
+          coef = &far_coef_[static_cast<std::size_t>(j) * T];
+        } else {
+          far_coefficients(i, cl, c.data());
+          coef = c.data();
+        }
+        const double* m = &moments[static_cast<std::size_t>(cl) * T];
+        for (std::size_t t = 0; t < T; ++t) sum += coef[t] * m[t];  // (47)
+      }
+      y[i] = sum;
+    }
+  }
+}
+
+std::vector<Index> FastOperator::far_clusters(Index i) const {
+  return {far_cluster_.begin() + far_start_[static_cast<std::size_t>(i)], far_cluster_.begin() + far_start_[static_cast<std::size_t>(i) + 1]};
+}
+
+std::vector<Index> FastOperator::near_elements(Index i) const {
+  return {near_col_.begin() + near_start_[static_cast<std::size_t>(i)], near_col_.begin() + near_start_[static_cast<std::size_t>(i) + 1]};
+}
+
+}  // namespace panelrad

@@ -1,0 +1,21 @@
+#include <panelrad/dense_operator.hpp>
+#include <panelrad/fast_operator.hpp>
+#include <panelrad/operator_factory.hpp>
+
+#include <stdexcept>
+
+namespace panelrad {
+
+std::unique_ptr<RadiosityOperator> make_operator(const Collocation& collocation, const OperatorOptions& options) {
+  if (options.method == "dense") return std::make_unique<DenseOperator>(collocation, options.near);
+  if (options.method == "fast") {
+    FastOptions fast;
+    fast.eta = options.eta;
+    fast.degree = options.degree;
+    fast.near = options.near;
+    return std::make_unique<FastOperator>(collocation, fast);
+  }
+  throw std::invalid_argument("method '" + options.method + "' is not 'dense' or 'fast'");
+}
+
+}  // namespace panelrad
