@@ -150,8 +150,12 @@ double Scene::max_reflectivity() const {
   return m;
 }
 
-Scene make_paper_cube_scene() {
-  Scene scene(geometry::make_cube());
+Scene make_paper_cube_scene(double scale, const Vec3& offset) {
+  if (!(scale > 0) || !std::isfinite(scale) || !offset.allFinite())
+    throw std::invalid_argument("paper cube: scale must be positive and finite, offset finite");
+  geometry::TriangleMesh cube = geometry::make_cube();
+  for (Vec3& v : cube.vertices) v = offset + scale * v;  // orientation and facets unchanged
+  Scene scene(std::move(cube));
   // rho by the facet's orientation: 0.5 on y = const, 0.4 on z = const, 0.3 on x = const (31).
   std::vector<double> rho(static_cast<std::size_t>(scene.num_facets()), 0.0);
   const auto& mesh = scene.mesh();
@@ -162,7 +166,8 @@ Scene make_paper_cube_scene() {
     rho[static_cast<std::size_t>(mesh.facet_of_triangle[t])] = axis == 0 ? 0.3 : axis == 1 ? 0.5 : 0.4;
   }
   scene.set_reflectivity(std::move(rho));
-  scene.set_manufactured_solution([](const Vec3& Q, Index) { return Q.squaredNorm(); });
+  scene.set_manufactured_solution(
+      [scale, offset](const Vec3& Q, Index) { return ((Q - offset) / scale).squaredNorm(); });
   return scene;
 }
 

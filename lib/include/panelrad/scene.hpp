@@ -64,7 +64,9 @@ class Scene {
 };
 
 /// The paper's cube example (31): unit cube, rho = 0.5 on y = 0, 1; 0.4 on z = 0, 1; 0.3 on
-/// x = 0, 1; true solution u = x^2 + y^2 + z^2 (E manufactured).
-Scene make_paper_cube_scene();
+/// x = 0, 1; true solution u = x^2 + y^2 + z^2 (E manufactured). With `scale` and `offset` the
+/// cube becomes offset + scale [0,1]^3 and u(Q) = |(Q - offset) / scale|^2: the same problem, for
+/// stress tests of where the scene sits and how large it is.
+Scene make_paper_cube_scene(double scale = 1.0, const Vec3& offset = Vec3::Zero());
 
 }  // namespace panelrad
