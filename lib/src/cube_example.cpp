@@ -1,4 +1,5 @@
 #include <panelrad/cube_example.hpp>
+#include <panelrad/fast_operator.hpp>
 #include <panelrad/resources.hpp>
 #include <panelrad/text_output.hpp>
 
@@ -29,6 +30,13 @@ std::vector<CubeRow> run_paper_cube(const CubeRunOptions& options, const std::fu
     const auto K = make_operator(collocation, options.op);
     row.setup_s = collocation.tree_seconds() + clock.seconds();
     row.operator_mb = static_cast<double>(K->bytes()) / (1024.0 * 1024.0);
+    if (const auto* fast = dynamic_cast<const FastOperator*>(K.get())) {
+      const FastStatistics& s = fast->statistics();
+      row.near_pairs = s.near_pairs;
+      row.far_pairs = s.far_pairs;
+      row.skipped_coplanar = s.skipped_coplanar;
+      row.far_stored = s.far_stored;
+    }
     const SolveResult result = solve(*K, collocation.emissivity(), options.solver, scene.max_reflectivity());
     row.solve_s = result.seconds;
     row.iterations = result.iterations;
@@ -70,19 +78,30 @@ void print_cube_header(std::ostream& os, const CubeRunOptions& o) {
   if (o.op.method == "fast") os << ", eta " << o.op.eta << ", degree M " << o.op.degree;
   os << ", solver " << to_string(o.solver.kind) << ", threads " << max_threads() << "\n";
   char buf[256];
-  std::snprintf(buf, sizeof buf, "%8s %11s %6s %9s %9s %9s %6s %8s %9s %9s %9s\n", "n", "max error", "ratio",
+  std::snprintf(buf, sizeof buf, "%8s %11s %6s %9s %9s %9s %6s %8s %9s %9s %9s", "n", "max error", "ratio",
                 "setup s", "E s", "solve s", "iters", "Neumann", "s/product", "op MB", "peak MB");
   os << buf;
+  if (o.op.method == "fast") {
+    std::snprintf(buf, sizeof buf, " %12s %12s %11s %s", "near pairs", "far pairs", "coplanar", "far field");
+    os << buf;
+  }
+  os << "\n";
 }
 
 void print_cube_row(std::ostream& os, const CubeRow& r) {
   char buf[256];
   char ratio[16] = "";
   if (r.error_ratio > 0) std::snprintf(ratio, sizeof ratio, "%.2f", r.error_ratio);
-  std::snprintf(buf, sizeof buf, "%8d %11.3e %6s %9.3f %9.3f %9.3f %6d %8.4f %9.3g %9.1f %9.0f\n",
+  std::snprintf(buf, sizeof buf, "%8d %11.3e %6s %9.3f %9.3f %9.3f %6d %8.4f %9.3g %9.1f %9.0f",
                 static_cast<int>(r.n), r.max_error, ratio, r.setup_s, r.emissivity_s, r.solve_s, r.iterations,
                 r.conv_ratio, r.per_product_s, r.operator_mb, r.peak_rss_mb);
   os << buf;
+  if (r.method == "fast") {
+    std::snprintf(buf, sizeof buf, " %12zu %12zu %11zu %s", r.near_pairs, r.far_pairs, r.skipped_coplanar,
+                  r.far_stored ? "stored" : "recomputed");
+    os << buf;
+  }
+  os << "\n";
   os.flush();
 }
 

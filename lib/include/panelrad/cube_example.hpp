@@ -35,6 +35,9 @@ struct CubeRow {
   double peak_rss_mb = 0;
   double operator_mb = 0;     ///< bytes stored by the operator
   double per_product_s = 0;   ///< solve time / products
+  // Fast method only (section 4): the covering's size and what was stored.
+  std::size_t near_pairs = 0, far_pairs = 0, skipped_coplanar = 0;
+  bool far_stored = false;
 };
 
 /// Runs the levels in order; `on_row` (if set) sees each row as soon as it is done.
