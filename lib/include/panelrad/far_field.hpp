@@ -16,6 +16,9 @@ namespace panelrad {
 
 using geometry::Vec3;
 
+/// Largest Taylor degree M supported (stack arrays are sized for it).
+inline constexpr int kMaxTaylorDegree = 12;
+
 /// Number of coefficients of a bivariate polynomial of total degree <= M: (M+1)(M+2)/2.
 constexpr int num_taylor_terms(int M) { return (M + 1) * (M + 2) / 2; }
 /// Position of x^p y^q in the graded order (0,0),(1,0),(0,1),(2,0),(1,1),(0,2),(3,0),...
@@ -34,9 +37,13 @@ struct PlaneFrame {
 PlaneFrame make_plane_frame(const Vec3& origin, const Vec3& normal);
 
 /// Taylor coefficients c_pq (graded order, num_taylor_terms(M) values) of G(P, Q(x,y)) about
-/// (x,y) = (0,0) of `frame`, degree M in [0, 12]. Computed with truncated power-series
-/// arithmetic in the scaled variables (x,y)/|P-A|, free of overflow and cancellation for
-/// admissible pairs. `c` must hold num_taylor_terms(M) doubles.
+/// (x,y) = (0,0) of `frame`, degree M in [0, 12]. Computed in the scaled variables (x,y)/|P-A|
+/// by the Gegenbauer recurrence for |P-Q|^-4 (exact in exact arithmetic, forward-stable), free
+/// of overflow and cancellation for admissible pairs; allocation-free. For |x|,|y| within a disc
+/// of radius R = eta |P-A| the error is at most |h|/|P-A|^4 (|L0| T_M + |grad L| R T_{M-1}),
+/// T_M = sum_{n>M} C(n+3,3) eta^n, h = (P-A).nQ, L0 = (A-P).nP (see tests/test_far_field.cpp). `c` must hold num_taylor_terms(M) doubles. Throws std::invalid_argument when
+/// M is outside [0, kMaxTaylorDegree] or P coincides with A(tau). The unscaled c_pq carry the
+/// factor |P-A|^-(2+p+q), so |P-A| must exceed about 1e-300^(1/(M+2)) (1e-21 for M = 12).
 void kernel_taylor_coefficients(const Vec3& P, const Vec3& nP, const PlaneFrame& frame, int M,
                                 double* c);
 
