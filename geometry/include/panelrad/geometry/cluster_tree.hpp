@@ -13,20 +13,30 @@
 namespace panelrad::geometry {
 
 /// One triangle of some level: a cluster tau of the paper.
+/// Vertices are the exact midpoint-subdivision corners rounded to double (a midpoint is computed
+/// once as (p + q) * 0.5, symmetric in p, q, so neighbouring triangles share their corners
+/// bit for bit). normal and facet are those of the root triangle (level 0) and area is the root's
+/// area / 4^level, so rounding of midpoints never perturbs them; centre and radius are exact for the stored (double) corners,
+/// each rounded to nearest once.
 struct Cluster {
   std::array<Vec3, 3> vertex;  ///< corners, counter-clockwise seen from outside
   Vec3 normal;                 ///< inner unit normal n of its plane (points into the solid), (2)
   Vec3 centre;                 ///< A(tau): circumcircle centre, exact construction rounded once, (41)
   double radius = 0;           ///< R(tau): circumcircle radius, exact construction rounded once, (41)
-  double area = 0;
+  double area = 0;             ///< area of the exact midpoint subdivision: root area / 4^level
   Index facet = 0;             ///< input facet (maximal planar polygon) it lies in
 };
 
 class ClusterTree {
  public:
   /// Subdivides a validated mesh (validate_closed_convex) `finest_level` times.
-  /// Throws MeshError when the tree would not fit in memory (estimate given) or level < 0.
+  /// Throws MeshError when the tree would not fit in memory (estimate given, checked before any
+  /// allocation against default_memory_limit()), when level < 0, when n or the number of clusters
+  /// would overflow Index, or when the mesh is inconsistent (bad index, non-finite coordinate,
+  /// zero-area triangle).
   ClusterTree(const TriangleMesh& validated_mesh, int finest_level);
+  /// As above, refusing trees whose estimate_bytes() exceeds memory_limit_bytes.
+  ClusterTree(const TriangleMesh& validated_mesh, int finest_level, std::size_t memory_limit_bytes);
 
   int finest_level() const { return finest_level_; }
   Index num_roots() const { return n0_; }                       ///< n0
@@ -56,8 +66,11 @@ class ClusterTree {
   std::size_t bytes() const;
   double bytes_per_element() const { return static_cast<double>(bytes()) / num_elements(); }
 
-  /// Estimated bytes for a given n0 and level, to refuse sizes that will not fit before allocating.
+  /// Estimated bytes for a given n0 and level, to refuse sizes that will not fit before allocating
+  /// (saturates at SIZE_MAX).
   static std::size_t estimate_bytes(Index n0, int finest_level);
+  /// The limit used by the two-argument constructor: the machine's physical memory.
+  static std::size_t default_memory_limit();
 
  private:
   int finest_level_ = 0;
