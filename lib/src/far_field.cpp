@@ -60,20 +60,6 @@ struct MomentWeights {
 };
 constexpr MomentWeights kMomentWeights{};
 
-// out = a * b truncated at total degree M (bivariate polynomials in graded order).
-template <int M>
-void multiply_truncated(const double* a, const double* b, double* out) {
-  for (int n = 0; n <= M; ++n) {
-    for (int q = 0; q <= n; ++q) {
-      const int p = n - q;
-      double s = 0.0;
-      for (int i = 0; i <= p; ++i)
-        for (int j = 0; j <= q; ++j) s += a[taylor_index(i, j)] * b[taylor_index(p - i, q - j)];
-      out[taylor_index(p, q)] = s;
-    }
-  }
-}
-
 // Calls f(std::integral_constant<int, M>{}) for the runtime degree M in [0, kMaxTaylorDegree]:
 // the bodies below are compiled once per degree, so that their loops unroll.
 template <class F, int... Ms>
@@ -175,27 +161,26 @@ void kernel_taylor_coefficients(const Vec3& P, const Vec3& nP, const PlaneFrame&
 // Int_Delta x^p y^q dS with x = sum_k l_k x_k, y = sum_k l_k y_k (barycentric l_k) and
 // Int l1^i l2^j l3^k dS = 2|Delta| i! j! k! / (i+j+k+2)!: expanding multinomially,
 //   Int x^p y^q dS = 2|Delta| p! q!/(p+q+2)! * [s^p t^q] prod_k 1/(1 - x_k s - y_k t),
-// where [s^i t^j] 1/(1 - x s - y t) = C(i+j, i) x^i y^j.
+// since [s^i t^j] 1/(1 - x s - y t) = C(i+j, i) x^i y^j turns (i+j)!/(i! j!) into the weights.
 namespace {
 
 template <int M>
 void triangle_moments_of_degree(const std::array<double, 2> (&v)[3], double twice_area, double* m) {
   constexpr int T = num_taylor_terms(M);
-  double g[3][T];
+  // H = prod_k 1/(1 - z_k), z_k = x_k s + y_k t, by three in-place divisions G = A/(1 - z), i.e.
+  // G_n = A_n + z G_{n-1} degree by degree (O(M^2) each); coefficient of s^(n-q) t^q at index q.
+  for (int t = 0; t < T; ++t) m[t] = 0.0;
+  m[0] = 1.0;
   for (int k = 0; k < 3; ++k) {
     const double x = v[k][0], y = v[k][1];
-    double xp[M + 1], yp[M + 1];
-    xp[0] = yp[0] = 1.0;
-    for (int i = 1; i <= M; ++i) {
-      xp[i] = xp[i - 1] * x;
-      yp[i] = yp[i - 1] * y;
+    for (int n = 1; n <= M; ++n) {
+      double* Gn = m + taylor_index(n, 0);
+      const double* G1 = m + taylor_index(n - 1, 0);
+      Gn[0] += x * G1[0];
+      for (int q = 1; q < n; ++q) Gn[q] += x * G1[q] + y * G1[q - 1];
+      Gn[n] += y * G1[n - 1];
     }
-    for (int n = 0; n <= M; ++n)
-      for (int j = 0; j <= n; ++j) g[k][taylor_index(n - j, j)] = kBinomial.v[n][j] * xp[n - j] * yp[j];
   }
-  double g01[T];
-  multiply_truncated<M>(g[0], g[1], g01);
-  multiply_truncated<M>(g01, g[2], m);
   for (int t = 0; t < T; ++t) m[t] *= twice_area * kMomentWeights.v[t];
 }
 
