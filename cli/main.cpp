@@ -26,7 +26,7 @@ int main(int argc, char** argv) {
   const std::string cmd = argv[1];
   try {
     if (cmd == "check") return panelrad::cli::run_check(argc - 1, argv + 1);
-    // CUBE_DISPATCH
+    if (cmd == "cube") return panelrad::cli::run_cube(argc - 1, argv + 1);
     if (cmd == "version" || cmd == "--version") {
       std::cout << "panelrad " << panelrad::version() << "\n";
       return 0;

@@ -1,5 +1,9 @@
 #include <panelrad/geometry/mesh.hpp>
 
+#include <Eigen/Geometry>
+
+#include <Eigen/Geometry>  // cross()
+
 namespace panelrad::geometry {
 
 double surface_area(const TriangleMesh& mesh) {
