@@ -2,7 +2,10 @@
 // Exact integrals over planar triangles: monomials, and the point-to-triangle form factor.
 #include <panelrad/geometry/mesh.hpp>
 
+#include <Eigen/Geometry>  // cross products
+
 #include <array>
+#include <cmath>
 #include <vector>
 
 namespace panelrad::quadrature {
@@ -28,8 +31,87 @@ std::vector<double> monomial_moments_2d(const std::array<double, 2>& a,
 /// the point-to-polygon form factor by the contour-integral formula, computed with
 /// atan2(|R_k x R_k+1|, R_k . R_k+1) and a series where the cross product vanishes. Exactly 0 when
 /// P lies in the triangle's plane (paper 4.2, case (a)). Signed: positive for a convex scene
-/// with inner normals.
-double form_factor(const Vec3& P, const Vec3& nP, const Vec3& a, const Vec3& b, const Vec3& c,
-                   const Vec3& nQ);
+/// with inner normals. Defined inline below (hot path: called once per near-field pair).
+inline double form_factor(const Vec3& P, const Vec3& nP, const Vec3& a, const Vec3& b,
+                          const Vec3& c, const Vec3& nQ);
+
+// ------------------------------------------------------------------------------------------------
+// Implementation of form_factor.
+//
+// Write Q - P = rho - h nQ with h = (P - a).nQ (constant over the plane) and rho the in-plane
+// vector from the foot of P, and nP = t + nu nQ (t in-plane). Then (paper (2))
+//   (1/pi) Int G dS = (h/pi) [ t . Int rho/(r^2+h^2)^2 dS  -  h nu Int dS/(r^2+h^2)^2 ],
+// and both integrands are divergences of fields regular at the foot:
+//   rho/(r^2+h^2)^2 = -grad( 1/(2(r^2+h^2)) ),  1/(r^2+h^2)^2 = div( rho / (2h^2 (r^2+h^2)) ).
+// On edge k (outward in-plane normal n_k, foot at signed distance e_k inside its line, P at
+// distance D_k = sqrt(e_k^2 + h^2) of the line, arc parameters s1 < s2 from P's projection)
+//   Int_edge ds/(r^2+h^2) = gamma_k / D_k,  gamma_k = atan2(D_k L_k, D_k^2 + s1 s2),
+// the angle subtended by the edge at P (D_k L_k = |R_k x R_k+1|, D_k^2 + s1 s2 = R_k . R_k+1).
+// Hence the contour formula
+//   F = -(1/2pi) sum_k [ h (nP.n_k) + nu e_k ] gamma_k / D_k,
+// which is the classical (1/2pi) sum gamma_k nP.(R_k x R_k+1)/|R_k x R_k+1| written per edge.
+// When the foot lies outside the triangle and P is close to the plane, sum_k e_k gamma_k/D_k
+// is O(h^2) made of O(1) terms; it is then recomputed cancellation-free as
+//   sum_k sgn(e_k) [ (|e_k|/D_k - 1) gamma_k + (gamma_k(D_k) - gamma_k(|e_k|)) ]
+// (the in-plane winding sum sgn(e_k) gamma_k(|e_k|) is exactly 0 outside), each bracket
+// evaluated from differences formed analytically (D - |e| = h^2/(D + |e|)).
+namespace detail {
+
+/// gamma / D with gamma = atan2(D L, den): the angle subtended by an edge of length L seen from a
+/// point at distance D of its line, den = R_k . R_k+1. Series in t = D L / den when t is tiny
+/// (avoids 0/0 when the cross product vanishes and keeps full relative accuracy).
+inline double angle_over_distance(double D, double L, double den) {
+  const double x = D * L;
+  if (den > 0 && x < 1e-3 * den) {
+    const double t = x / den, t2 = t * t;  // atan(t)/t = 1 - t^2/3 + t^4/5 - t^6/7 + O(t^8)
+    return (L / den) * (1.0 - t2 * (1.0 / 3.0 - t2 * (1.0 / 5.0 - t2 * (1.0 / 7.0))));
+  }
+  return std::atan2(x, den) / D;
+}
+
+}  // namespace detail
+
+inline double form_factor(const Vec3& P, const Vec3& nP, const Vec3& a, const Vec3& b,
+                          const Vec3& c, const Vec3& nQ) {
+  const double h = (P - a).dot(nQ);  // (P - Q).nQ for every Q of the plane
+  if (h == 0) return 0;              // paper 4.2, case (a): coplanar, exactly zero
+  const bool flip = (b - a).cross(c - a).dot(nQ) < 0;  // walk the edges counter-clockwise about nQ
+  const Vec3* V[4] = {&a, flip ? &c : &b, flip ? &b : &c, &a};
+  const double nu = nP.dot(nQ), h2 = h * h;
+  double sum_t = 0, sum_n = 0, mag_n = 0;
+  bool outside = false;
+  double e[3], D[3], g[3], s1[3], s2[3];
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 E = *V[k + 1] - *V[k];
+    const double L = E.norm();
+    const Vec3 tau = E / L;
+    const Vec3 nk = tau.cross(nQ);  // outward in-plane normal of edge k
+    const Vec3 w0 = *V[k] - P, w1 = *V[k + 1] - P;
+    e[k] = w0.dot(nk);
+    s1[k] = w0.dot(tau);
+    s2[k] = w1.dot(tau);
+    D[k] = std::sqrt(e[k] * e[k] + h2);
+    g[k] = detail::angle_over_distance(D[k], L, D[k] * D[k] + s1[k] * s2[k]);
+    sum_t += nP.dot(nk) * g[k];
+    const double term = e[k] * g[k];
+    sum_n += term;
+    mag_n += std::abs(term);
+    outside |= e[k] < 0;
+  }
+  if (outside && nu != 0 && std::abs(sum_n) * 64.0 < mag_n) {
+    sum_n = 0;  // cancellation-free form; the winding term is 0 since the foot is outside
+    for (int k = 0; k < 3; ++k) {
+      if (e[k] == 0) continue;
+      const double ae = std::abs(e[k]);
+      const double q = h2 / (D[k] + ae);  // D - |e|
+      const double delta = std::atan2(-s2[k] * q, D[k] * ae + s2[k] * s2[k]) -
+                           std::atan2(-s1[k] * q, D[k] * ae + s1[k] * s1[k]);
+      const double bracket = -q * g[k] + delta;  // (|e|/D - 1) gamma + gamma(D) - gamma(|e|)
+      sum_n += e[k] > 0 ? bracket : -bracket;
+    }
+  }
+  constexpr double inv_two_pi = 0.15915494309189533577;  // 1/(2 pi)
+  return -(h * sum_t + nu * sum_n) * inv_two_pi;
+}
 
 }  // namespace panelrad::quadrature

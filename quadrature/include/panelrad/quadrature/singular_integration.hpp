@@ -4,6 +4,8 @@
 // solution u, the paper's test method (section 3, example (31)).
 #include <panelrad/geometry/mesh.hpp>
 
+#include <Eigen/Geometry>  // cross products
+
 #include <functional>
 
 namespace panelrad::quadrature {
@@ -16,10 +18,16 @@ struct SingularIntegralResult {
   int evaluations = 0;
 };
 
-/// (1/pi) Int_Delta f(Q) G(P,Q) dS_Q to relative accuracy `rel_tol` (down to ~1e-12), by polar
-/// coordinates about the foot of P on the triangle's plane with a radial substitution that
-/// absorbs the near singularity, and adaptive Gauss-Kronrod in angle and radius.
-/// 0 when P lies in the plane of the triangle.
+/// (1/pi) Int_Delta f(Q) G(P,Q) dS_Q to relative accuracy `rel_tol` (effective tolerance
+/// max(rel_tol, 1e-12)), for f smooth on the triangle.
+/// Well-separated P (dist >= 2 diam): adaptive midpoint subdivision with an embedded pair of
+/// collapsed Gauss rules (degree 10 / 8). Otherwise polar coordinates about the foot of P on the
+/// triangle's plane, angle split at the vertex directions and graded logarithmically towards
+/// directions parallel to an edge, radius in atan(r/|h|) below |h| and in ln r above, adaptive
+/// Gauss-Kronrod (7/15) in both: accurate also when P is within 1e-7 of an edge.
+/// 0 (and 0 evaluations) when P lies exactly in the plane of the triangle (h == 0).
+/// Errors: std::invalid_argument for an empty f, rel_tol <= 0, non-finite input or a zero-area
+/// triangle; std::runtime_error for a non-finite result or no convergence.
 SingularIntegralResult integrate_kernel_times(const std::function<double(const Vec3&)>& f,
                                               const Vec3& P, const Vec3& nP, const Vec3& a,
                                               const Vec3& b, const Vec3& c, const Vec3& nQ,

@@ -2,6 +2,8 @@
 // Quadrature rules on a triangle and the composite scheme of the paper's section 4.2.
 #include <panelrad/geometry/mesh.hpp>
 
+#include <Eigen/Geometry>  // cross products
+
 #include <array>
 #include <string>
 #include <vector>
@@ -25,6 +27,11 @@ const TriangleRule& three_point_rule();    ///< 3 edge midpoints, degree 2 (pape
 const TriangleRule& stroud_t2_5_1();       ///< 7 points, degree 5 (Stroud T2:5-1, paper 4.2)
 /// A rule of degree >= `degree` (1 <= degree <= 20, positive weights, points inside).
 const TriangleRule& rule_of_degree(int degree);
+/// Largest n accepted by collapsed_gauss_rule.
+inline constexpr int kMaxCollapsedGaussPoints = 16;
+/// Collapsed (Duffy) Gauss-Legendre product rule with n x n points, degree 2n-2, positive weights,
+/// points strictly inside (1 <= n <= kMaxCollapsedGaussPoints).
+const TriangleRule& collapsed_gauss_rule(int n);
 /// Named rules for option parsing: "centroid", "three_point", "stroud7", "degreeK".
 const TriangleRule& rule_by_name(const std::string& name);
 
