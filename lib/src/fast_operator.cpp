@@ -93,75 +93,100 @@ FastOperator::FastOperator(const Collocation& collocation, const FastOptions& op
     normal_[static_cast<std::size_t>(i)] = collocation.normal(i);
   }
 
-  // Pass 1: the covering of every row, counted (rows with rho = 0 are not computed).
-  std::vector<std::int64_t> near_count(static_cast<std::size_t>(n_) + 1, 0), far_count(static_cast<std::size_t>(n_) + 1, 0);
+  stats_.geometry_s = clock.seconds();
+  clock.restart();
+  // One traversal per row, in blocks of rows: each block keeps its covering (and the near-field
+  // integrals, (43) first sum) locally; blocks are then concatenated in row order, so the result
+  // is identical for any thread count.
+  const NearFieldIntegrator integrate_near(options_.near, tree.mesh_size());
+  constexpr Index kBlock = 256;
+  const Index num_blocks = (n_ + kBlock - 1) / kBlock;
+  struct Block {
+    std::vector<std::int64_t> near_count, far_count;
+    std::vector<Index> near_col, far_cluster;
+    std::vector<double> near_val;
+  };
+  std::vector<Block> blocks(static_cast<std::size_t>(num_blocks));
   std::size_t skipped = 0, skipped_rows = 0;
-#pragma omp parallel for schedule(dynamic, 64) reduction(+ : skipped, skipped_rows)
-  for (Index i = 0; i < n_; ++i) {
-    if (rho_[static_cast<std::size_t>(i)] == 0) {
-      ++skipped_rows;
-      continue;
+  bool out_of_memory = false;
+  {
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : skipped, skipped_rows)
+    for (Index b = 0; b < num_blocks; ++b) try {
+      Block& blk = blocks[static_cast<std::size_t>(b)];
+      const Index first = b * kBlock, last = std::min(n_, first + kBlock);
+      blk.near_count.assign(static_cast<std::size_t>(last - first), 0);
+      blk.far_count.assign(static_cast<std::size_t>(last - first), 0);
+      for (Index i = first; i < last; ++i) {
+        const double rho = rho_[static_cast<std::size_t>(i)];
+        if (rho == 0) {  // the row is zero: not computed
+          ++skipped_rows;
+          continue;
+        }
+        const Vec3& P = point_[static_cast<std::size_t>(i)];
+        const Vec3& nP = normal_[static_cast<std::size_t>(i)];
+        std::int64_t nn = 0, nf = 0;
+        cover(
+            tree, P, collocation.facet(i), options_.eta,
+            [&](int l, Index k) {
+              blk.far_cluster.push_back(cluster_id(l, k));
+              ++nf;
+            },
+            [&](Index e) {
+              blk.near_col.push_back(e);
+              blk.near_val.push_back(rho * integrate_near(P, nP, tree.cluster(L, e)));  // (43), first sum
+              ++nn;
+            },
+            [&]() { ++skipped; });
+        blk.near_count[static_cast<std::size_t>(i - first)] = nn;
+        blk.far_count[static_cast<std::size_t>(i - first)] = nf;
+      }
+    } catch (const std::bad_alloc&) {
+#pragma omp atomic write
+      out_of_memory = true;
     }
-    std::int64_t nn = 0, nf = 0;
-    cover(tree, point_[static_cast<std::size_t>(i)], collocation.facet(i), options_.eta,
-          [&](int, Index) { ++nf; }, [&](Index) { ++nn; }, [&]() { ++skipped; });
-    near_count[static_cast<std::size_t>(i) + 1] = nn;
-    far_count[static_cast<std::size_t>(i) + 1] = nf;
   }
-  near_start_.resize(near_count.size());
-  far_start_.resize(far_count.size());
-  near_start_[0] = far_start_[0] = 0;
-  for (std::size_t i = 1; i < near_count.size(); ++i) {
-    near_start_[i] = near_start_[i - 1] + near_count[i];
-    far_start_[i] = far_start_[i - 1] + far_count[i];
+  if (out_of_memory) {
+    blocks.clear();
+    throw std::runtime_error("fast operator for n = " + std::to_string(n_) +
+                             ": out of memory while building the near and far field lists; use fewer levels or a "
+                             "larger eta");
+  }
+  near_start_.assign(static_cast<std::size_t>(n_) + 1, 0);
+  far_start_.assign(static_cast<std::size_t>(n_) + 1, 0);
+  for (Index b = 0; b < num_blocks; ++b) {
+    const Block& blk = blocks[static_cast<std::size_t>(b)];
+    for (std::size_t r = 0; r < blk.near_count.size(); ++r) {
+      const std::size_t i = static_cast<std::size_t>(b * kBlock) + r;
+      near_start_[i + 1] = near_start_[i] + blk.near_count[r];
+      far_start_[i + 1] = far_start_[i] + blk.far_count[r];
+    }
   }
   stats_.near_pairs = static_cast<std::size_t>(near_start_.back());
   stats_.far_pairs = static_cast<std::size_t>(far_start_.back());
   stats_.skipped_coplanar = skipped;
   stats_.skipped_rows = skipped_rows;
 
-  // Memory: refuse before allocating what cannot fit; store far coefficients only when they fit.
-  const std::size_t near_bytes = stats_.near_pairs * (sizeof(Index) + sizeof(double));
-  const std::size_t far_list_bytes = stats_.far_pairs * sizeof(Index);
+  // Memory: far coefficients are stored only when they fit; else recomputed in each product.
   const std::size_t far_coef_bytes = stats_.far_pairs * static_cast<std::size_t>(T) * sizeof(double);
   const std::size_t avail = available_memory_bytes();
-  if (near_bytes + far_list_bytes > avail / 10 * 9) {
-    std::ostringstream os;
-    os << "fast operator for n = " << n_ << " needs " << format_bytes(static_cast<double>(near_bytes + far_list_bytes))
-       << " for its near and far field lists but only " << format_bytes(static_cast<double>(avail))
-       << " is available; use fewer levels or a larger eta";
-    throw std::runtime_error(os.str());
-  }
   const std::size_t limit = options_.far_storage_limit ? options_.far_storage_limit : avail / 2;
   stats_.far_stored = far_coef_bytes <= limit;
-  stats_.covering_s = clock.seconds();
-
-  // Pass 2: fill. Each row writes only its own slots: identical for any thread count.
   near_col_.resize(stats_.near_pairs);
   near_val_.resize(stats_.near_pairs);
   far_cluster_.resize(stats_.far_pairs);
-  if (stats_.far_stored) far_coef_.resize(stats_.far_pairs * static_cast<std::size_t>(T));
-  const NearFieldIntegrator integrate_near(options_.near, tree.mesh_size());
-  clock.restart();
-#pragma omp parallel for schedule(dynamic, 64)
-  for (Index i = 0; i < n_; ++i) {
-    const double rho = rho_[static_cast<std::size_t>(i)];
-    if (rho == 0) continue;
-    const Vec3& P = point_[static_cast<std::size_t>(i)];
-    const Vec3& nP = normal_[static_cast<std::size_t>(i)];
-    std::int64_t jn = near_start_[static_cast<std::size_t>(i)], jf = far_start_[static_cast<std::size_t>(i)];
-    cover(
-        tree, P, collocation.facet(i), options_.eta,
-        [&](int l, Index k) { far_cluster_[static_cast<std::size_t>(jf++)] = cluster_id(l, k); },
-        [&](Index e) {
-          near_col_[static_cast<std::size_t>(jn)] = e;
-          near_val_[static_cast<std::size_t>(jn++)] = rho * integrate_near(P, nP, tree.cluster(L, e));  // (43), first sum
-        },
-        []() {});
+#pragma omp parallel for schedule(static)
+  for (Index b = 0; b < num_blocks; ++b) {
+    Block& blk = blocks[static_cast<std::size_t>(b)];
+    const std::size_t i0 = static_cast<std::size_t>(b * kBlock);
+    std::copy(blk.near_col.begin(), blk.near_col.end(), near_col_.begin() + near_start_[i0]);
+    std::copy(blk.near_val.begin(), blk.near_val.end(), near_val_.begin() + near_start_[i0]);
+    std::copy(blk.far_cluster.begin(), blk.far_cluster.end(), far_cluster_.begin() + far_start_[i0]);
+    blk = Block{};  // release as we go
   }
-  stats_.near_s = clock.seconds();
+  stats_.covering_s = clock.seconds();  // covering (42) and near field (43)
   clock.restart();
   if (stats_.far_stored) {
+    far_coef_.resize(stats_.far_pairs * static_cast<std::size_t>(T));
 #pragma omp parallel for schedule(dynamic, 64)
     for (Index i = 0; i < n_; ++i)
       for (std::int64_t j = far_start_[static_cast<std::size_t>(i)]; j < far_start_[static_cast<std::size_t>(i) + 1]; ++j)
