@@ -70,6 +70,7 @@ int run_cube(int argc, char** argv) {
     std::cerr << "panelrad cube: error: " << e.what() << "\n";
     return 1;
   }
+  print_cube_growth(std::cout, rows);
   if (!csv.empty()) {
     write_cube_csv(rows, csv);
     std::cout << "wrote " << csv << "\n";

@@ -165,7 +165,9 @@ TEST(FastOperator, RowsWithZeroReflectivityAreNotComputed) {
   Eigen::VectorXd y;
   fast.apply(Eigen::VectorXd::Ones(col.size()), y);
   for (Index i = 0; i < col.size(); ++i) {
-    if (col.facet(i) == 2) EXPECT_EQ(y[i], 0.0);
+    if (col.facet(i) == 2) {
+      EXPECT_EQ(y[i], 0.0);
+    }
   }
 }
 

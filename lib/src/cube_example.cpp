@@ -106,3 +106,23 @@ void print_cube_row(std::ostream& os, const CubeRow& r) {
 }
 
 }  // namespace panelrad
+
+namespace panelrad {
+
+void print_cube_growth(std::ostream& os, const std::vector<CubeRow>& rows) {
+  if (rows.size() < 2) return;
+  os << "growth per 4x in n (n log n would be ~4.3-4.6x, n^2 16x):\n";
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "%8s -> %-8s %12s %14s %12s\n", "n", "4n", "setup", "per product", "error");
+  os << buf;
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    const CubeRow& a = rows[k - 1];
+    const CubeRow& b = rows[k];
+    const auto ratio = [](double x, double y) { return x > 0 ? y / x : 0.0; };
+    std::snprintf(buf, sizeof buf, "%8d -> %-8d %11.2fx %13.2fx %11.2fx\n", static_cast<int>(a.n), static_cast<int>(b.n),
+                  ratio(a.setup_s, b.setup_s), ratio(a.per_product_s, b.per_product_s), ratio(a.max_error, b.max_error));
+    os << buf;
+  }
+}
+
+}  // namespace panelrad

@@ -52,5 +52,7 @@ void write_cube_csv(const std::vector<CubeRow>& rows, const std::string& path);
 /// Prints the table in the style of Table 1 (dense) or Tables 2-4 (fast).
 void print_cube_header(std::ostream& os, const CubeRunOptions& options);
 void print_cube_row(std::ostream& os, const CubeRow& row);
+/// Growth of setup time and time per product per 4x in n (cost should grow like n log n, not n^2).
+void print_cube_growth(std::ostream& os, const std::vector<CubeRow>& rows);
 
 }  // namespace panelrad
