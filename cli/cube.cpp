@@ -4,6 +4,9 @@
 
 #include <panelrad/cube_example.hpp>
 #include <panelrad/resources.hpp>
+#include <panelrad/text_output.hpp>
+
+#include <filesystem>
 
 #include <iostream>
 #include <string>
@@ -62,6 +65,15 @@ int run_cube(int argc, char** argv) {
     return 2;
   }
   set_threads(threads);
+  if (!csv.empty()) {  // fail before a long run, not after it
+    try {
+      write_file_atomically(csv + ".probe", "");
+      std::filesystem::remove(csv + ".probe");
+    } catch (const std::exception& e) {
+      std::cerr << "panelrad cube: error: " << e.what() << "\n";
+      return 1;
+    }
+  }
   print_cube_header(std::cout, o);
   std::vector<CubeRow> rows;
   try {

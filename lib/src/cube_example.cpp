@@ -1,4 +1,5 @@
 #include <panelrad/cube_example.hpp>
+#include <panelrad/dense_operator.hpp>
 #include <panelrad/fast_operator.hpp>
 #include <panelrad/resources.hpp>
 #include <panelrad/text_output.hpp>
@@ -12,6 +13,10 @@ namespace panelrad {
 std::vector<CubeRow> run_paper_cube(const CubeRunOptions& options, const std::function<void(const CubeRow&)>& on_row) {
   if (options.min_level < 0 || options.max_level < options.min_level)
     throw std::invalid_argument("levels: need 0 <= min_level <= max_level");
+  // Refuse a dense level that cannot fit before any work (the cube has n0 = 12).
+  if (options.op.method == "dense")
+    for (int level = options.min_level; level <= options.max_level; ++level)
+      DenseOperator::check_fits(static_cast<Index>(12) << (2 * level));
   const Scene scene = make_paper_cube_scene();
   std::vector<CubeRow> rows;
   for (int level = options.min_level; level <= options.max_level; ++level) {

@@ -10,8 +10,7 @@ std::size_t DenseOperator::matrix_bytes(geometry::Index n) {
   return static_cast<std::size_t>(n) * static_cast<std::size_t>(n) * sizeof(double);
 }
 
-DenseOperator::DenseOperator(const Collocation& collocation, const NearFieldOptions& options) {
-  const geometry::Index n = collocation.size();
+void DenseOperator::check_fits(geometry::Index n) {
   const std::size_t need = matrix_bytes(n);
   const std::size_t avail = available_memory_bytes();
   if (need > avail / 10 * 9) {
@@ -21,6 +20,11 @@ DenseOperator::DenseOperator(const Collocation& collocation, const NearFieldOpti
        << " of memory is available; use the fast method (--method fast) or fewer levels";
     throw std::runtime_error(os.str());
   }
+}
+
+DenseOperator::DenseOperator(const Collocation& collocation, const NearFieldOptions& options) {
+  const geometry::Index n = collocation.size();
+  check_fits(n);
   K_.resize(n, n);
   const NearFieldIntegrator integrate(options, collocation.tree().mesh_size());
   const auto elements = collocation.tree().elements();

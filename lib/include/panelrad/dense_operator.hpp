@@ -18,6 +18,9 @@ class DenseOperator final : public RadiosityOperator {
 
   /// Bytes needed for the matrix of order n.
   static std::size_t matrix_bytes(geometry::Index n);
+  /// Throws std::runtime_error (with the estimate and what is available) when the matrix of
+  /// order n would not fit in memory; called before anything is allocated or computed.
+  static void check_fits(geometry::Index n);
 
   geometry::Index size() const override { return static_cast<geometry::Index>(K_.rows()); }
   void apply(const Eigen::VectorXd& v, Eigen::VectorXd& y) const override;

@@ -1,0 +1,91 @@
+// The `panelrad cube` command: table, CSV format, exit statuses, refusal of sizes that won't fit.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <vector>
+
+namespace {
+
+struct CliRun {
+  int status;
+  std::string output;
+};
+
+CliRun run(const std::string& args) {
+  const std::string cmd = std::string(PANELRAD_CLI) + " " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  std::string out;
+  char buf[4096];
+  while (p && std::fgets(buf, sizeof buf, p)) out += buf;
+  const int st = p ? pclose(p) : -1;
+  return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
+}
+
+std::vector<std::string> lines_of(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::string> lines;
+  for (std::string l; std::getline(in, l);) lines.push_back(l);
+  return lines;
+}
+
+std::string temp_path(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / ("panelrad_cli_cube_" + std::to_string(::getpid()) + "_" + name)).string();
+}
+
+TEST(CliCube, DenseCsvHasTheIssuesHeaderAndOneRowPerN) {
+  const std::string csv = temp_path("dense.csv");
+  const CliRun r = run("cube --levels 1 --csv " + csv);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("7.615e-02"), std::string::npos) << r.output;  // Table 1, n = 12: 7.61e-2
+  const auto lines = lines_of(csv);
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_EQ(lines[0], "method,near,eta,mu,degree,n,max_error,setup_s,solve_s,iterations,conv_ratio,peak_rss_mb");
+  EXPECT_EQ(lines[1].rfind("dense,exact,,", 0), 0u) << lines[1];  // eta and degree empty for dense
+  EXPECT_NE(lines[2].find(",48,"), std::string::npos) << lines[2];
+  std::filesystem::remove(csv);
+}
+
+TEST(CliCube, FastCsvFillsEtaAndDegree) {
+  const std::string csv = temp_path("fast.csv");
+  const CliRun r = run("cube --method fast --eta 0.3 --degree 3 --levels 1 --csv " + csv);
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto lines = lines_of(csv);
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_EQ(lines[1].rfind("fast,exact,0.3", 0), 0u) << lines[1];
+  EXPECT_NE(lines[1].find(",3,12,"), std::string::npos) << lines[1];
+  EXPECT_NE(r.output.find("far pairs"), std::string::npos) << r.output;
+  std::filesystem::remove(csv);
+}
+
+TEST(CliCube, UsageErrorsExitWithTwo) {
+  EXPECT_EQ(run("cube --bogus 1").status, 2);
+  EXPECT_EQ(run("cube --levels").status, 2);
+  EXPECT_EQ(run("cube --levels x").status, 2);
+  EXPECT_EQ(run("cube --method sparse").status, 2);
+  EXPECT_EQ(run("cube --solver lu --method fast").status, 2);
+  EXPECT_EQ(run("cube --eta 1.5").status, 2);
+  EXPECT_EQ(run("cube --min-level 3 --levels 2").status, 2);
+}
+
+// n = 12 * 4^8 = 786432: the dense matrix needs ~4.9 TB; refused at once with the estimate.
+TEST(CliCube, DenseLevelThatCannotFitIsRefusedBeforeWork) {
+  const CliRun r = run("cube --min-level 8 --levels 8");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("786432"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("needs"), std::string::npos) << r.output;
+}
+
+TEST(CliCube, UnwritableCsvIsAnErrorAndLeavesNoFile) {
+  const CliRun r = run("cube --levels 0 --csv /nonexistent-dir/x.csv");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_FALSE(std::filesystem::exists("/nonexistent-dir/x.csv"));
+}
+
+}  // namespace
