@@ -42,7 +42,10 @@ std::vector<CubeRow> run_paper_cube(const CubeRunOptions& options, const std::fu
       row.skipped_coplanar = s.skipped_coplanar;
       row.far_stored = s.far_stored;
     }
-    const SolveResult result = solve(*K, collocation.emissivity(), options.solver, scene.max_reflectivity());
+    SolverOptions solver = options.solver;
+    if (!(solver.tolerance > 0))
+      solver.tolerance = discretization_tolerance(collocation.tree().mesh_size(), collocation.tree().diameter());
+    const SolveResult result = solve(*K, collocation.emissivity(), solver, scene.max_reflectivity());
     row.solve_s = result.seconds;
     row.iterations = result.iterations;
     row.per_product_s = result.iterations > 0 ? result.seconds / result.iterations : 0;

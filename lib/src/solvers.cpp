@@ -201,6 +201,11 @@ SolveResult solve_lu(const DenseOperator& K, const Eigen::VectorXd& E) {
   return r;
 }
 
+double discretization_tolerance(double h, double diameter) {
+  if (!(h > 0) || !(diameter > 0)) throw std::invalid_argument("discretization_tolerance: h and diameter must be positive");
+  return std::clamp(1e-5 * h / diameter, 1e-14, 1e-3);
+}
+
 SolveResult solve(const RadiosityOperator& K, const Eigen::VectorXd& E, const SolverOptions& options,
                   double max_reflectivity) {
   switch (options.kind) {

@@ -15,6 +15,7 @@ struct CubeRunOptions {
   int min_level = 0;
   int max_level = 3;
   OperatorOptions op;
+  /// solver.tolerance <= 0: tied to the discretization error per level (discretization_tolerance).
   SolverOptions solver;
 };
 
