@@ -127,6 +127,28 @@ TEST_F(CubeLevel3, BitIdenticalForAnyThreadCount) {
   EXPECT_EQ(0, std::memcmp(y1.data(), y3.data(), sizeof(double) * 768));
 }
 
+// The self-check on sampled rows measures the real product error: it agrees with the error
+// against the dense product for v = 1 on the same rows, and shrinks with M.
+TEST_F(CubeLevel3, SelfCheckMeasuresTheProductError) {
+  double previous = 1;
+  for (int M : {0, 2, 4}) {
+    FastOptions o;
+    o.degree = M;
+    const FastOperator fast(*collocation, o);
+    const FastSelfCheck all = fast.self_check(768);  // every row
+    Eigen::VectorXd yf, yd;
+    const Eigen::VectorXd ones = Eigen::VectorXd::Ones(768);
+    fast.apply(ones, yf);
+    dense->apply(ones, yd);
+    const double dense_error = (yf - yd).lpNorm<Eigen::Infinity>() / yd.lpNorm<Eigen::Infinity>();
+    EXPECT_GE(all.relative_error, dense_error * 0.999) << "M " << M;  // covers v = 1 and more
+    EXPECT_LT(all.relative_error, previous) << "M " << M;
+    EXPECT_LE(fast.self_check(32).relative_error, all.relative_error * 1.000001);  // a subset
+    previous = all.relative_error;
+  }
+  EXPECT_LT(previous, 1e-4);
+}
+
 TEST_F(CubeLevel3, StoredAndRecomputedFarFieldAgree) {
   FastOptions stored, recomputed;
   recomputed.far_storage_limit = 1;  // nothing fits: recompute in every product

@@ -41,6 +41,7 @@ std::vector<CubeRow> run_paper_cube(const CubeRunOptions& options, const std::fu
       row.far_pairs = s.far_pairs;
       row.skipped_coplanar = s.skipped_coplanar;
       row.far_stored = s.far_stored;
+      row.checked_product_error = fast->self_check().relative_error;
     }
     SolverOptions solver = options.solver;
     if (!(solver.tolerance > 0))
@@ -90,7 +91,7 @@ void print_cube_header(std::ostream& os, const CubeRunOptions& o) {
                 "setup s", "E s", "solve s", "iters", "Neumann", "s/product", "op MB", "peak MB");
   os << buf;
   if (o.op.method == "fast") {
-    std::snprintf(buf, sizeof buf, " %12s %12s %11s %s", "near pairs", "far pairs", "coplanar", "far field");
+    std::snprintf(buf, sizeof buf, " %12s %12s %11s %10s %s", "near pairs", "far pairs", "coplanar", "Kv error", "far field");
     os << buf;
   }
   os << "\n";
@@ -105,8 +106,8 @@ void print_cube_row(std::ostream& os, const CubeRow& r) {
                 r.conv_ratio, r.per_product_s, r.operator_mb, r.peak_rss_mb);
   os << buf;
   if (r.method == "fast") {
-    std::snprintf(buf, sizeof buf, " %12zu %12zu %11zu %s", r.near_pairs, r.far_pairs, r.skipped_coplanar,
-                  r.far_stored ? "stored" : "recomputed");
+    std::snprintf(buf, sizeof buf, " %12zu %12zu %11zu %10.2e %s", r.near_pairs, r.far_pairs, r.skipped_coplanar,
+                  r.checked_product_error, r.far_stored ? "stored" : "recomputed");
     os << buf;
   }
   os << "\n";

@@ -1,9 +1,11 @@
 #include <panelrad/fast_operator.hpp>
 #include <panelrad/geometry/admissibility.hpp>
 #include <panelrad/kernel.hpp>
+#include <panelrad/quadrature/exact_integrals.hpp>
 #include <panelrad/resources.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 
@@ -243,35 +245,93 @@ void FastOperator::compute_moments(const Eigen::VectorXd& v, std::vector<double>
   }
 }
 
+// Row i of the fast product (43) from the cluster moments of v: near field plus far field (47).
+double FastOperator::apply_row(Index i, const Eigen::VectorXd& v, const std::vector<double>& moments,
+                               double* scratch) const {
+  const std::size_t T = static_cast<std::size_t>(terms_);
+  double sum = 0;
+  for (std::int64_t j = near_start_[static_cast<std::size_t>(i)]; j < near_start_[static_cast<std::size_t>(i) + 1]; ++j)
+    sum += near_val_[static_cast<std::size_t>(j)] * v[near_col_[static_cast<std::size_t>(j)]];
+  for (std::int64_t j = far_start_[static_cast<std::size_t>(i)]; j < far_start_[static_cast<std::size_t>(i) + 1]; ++j) {
+    const Index cl = far_cluster_[static_cast<std::size_t>(j)];
+    const double* coef;
+    if (stats_.far_stored) {
+      coef = &far_coef_[static_cast<std::size_t>(j) * T];
+    } else {
+      far_coefficients(i, cl, scratch);
+      coef = scratch;
+    }
+    const double* m = &moments[static_cast<std::size_t>(cl) * T];
+    for (std::size_t t = 0; t < T; ++t) sum += coef[t] * m[t];  // (47)
+  }
+  return sum;
+}
+
 void FastOperator::apply(const Eigen::VectorXd& v, Eigen::VectorXd& y) const {
   if (v.size() != n_) throw std::invalid_argument("FastOperator::apply: vector size differs from n");
   std::vector<double> moments;
   compute_moments(v, moments);
   y.resize(n_);
-  const std::size_t T = static_cast<std::size_t>(terms_);
 #pragma omp parallel
   {
-    std::vector<double> c(T);
+    std::vector<double> scratch(static_cast<std::size_t>(terms_));
 #pragma omp for schedule(dynamic, 256)
-    for (Index i = 0; i < n_; ++i) {
-      double sum = 0;
-      for (std::int64_t j = near_start_[static_cast<std::size_t>(i)]; j < near_start_[static_cast<std::size_t>(i) + 1]; ++j)
-        sum += near_val_[static_cast<std::size_t>(j)] * v[near_col_[static_cast<std::size_t>(j)]];
-      for (std::int64_t j = far_start_[static_cast<std::size_t>(i)]; j < far_start_[static_cast<std::size_t>(i) + 1]; ++j) {
-        const Index cl = far_cluster_[static_cast<std::size_t>(j)];
-        const double* coef;
-        if (stats_.far_stored) {
-          coef = &far_coef_[static_cast<std::size_t>(j) * T];
-        } else {
-          far_coefficients(i, cl, c.data());
-          coef = c.data();
+    for (Index i = 0; i < n_; ++i) y[i] = apply_row(i, v, moments, scratch.data());
+  }
+}
+
+// Exact entries of a row are cheap (one closed-form form factor per element, O(n)): compare the
+// fast rows with them for a constant and an oscillating vector.
+FastSelfCheck FastOperator::self_check(int samples) const {
+  FastSelfCheck check;
+  if (n_ == 0) return check;
+  samples = std::clamp(samples, 1, static_cast<int>(n_));
+  const geometry::ClusterTree& tree = *tree_;
+  const auto elements = tree.elements();
+  Stopwatch clock;
+  Eigen::VectorXd ones = Eigen::VectorXd::Ones(n_), wave(n_);
+  for (Index j = 0; j < n_; ++j) {  // deterministic, sign-changing, O(1): exercises cancellation
+    const Vec3& Q = point_[static_cast<std::size_t>(j)];
+    wave[j] = std::sin(12.9898 * Q.x() + 78.233 * Q.y() + 37.719 * Q.z() + 0.1 * j);
+  }
+  std::vector<double> m1, m2;
+  compute_moments(ones, m1);
+  compute_moments(wave, m2);
+  double err = 0, ref = 0;
+  std::vector<double> errs(static_cast<std::size_t>(samples), 0.0), refs(static_cast<std::size_t>(samples), 0.0);
+#pragma omp parallel
+  {
+    std::vector<double> scratch(static_cast<std::size_t>(terms_));
+#pragma omp for schedule(dynamic, 1)
+    for (int k = 0; k < samples; ++k) {
+      const Index i = static_cast<Index>((static_cast<std::int64_t>(k) * n_) / samples + (n_ / samples) / 2);
+      const double rho = rho_[static_cast<std::size_t>(i)];
+      double exact1 = 0, exact2 = 0;
+      if (rho != 0) {
+        const Vec3& P = point_[static_cast<std::size_t>(i)];
+        const Vec3& nP = normal_[static_cast<std::size_t>(i)];
+        const Index fi = elements[static_cast<std::size_t>(i)].facet;
+        for (Index j = 0; j < n_; ++j) {
+          const geometry::Cluster& e = elements[static_cast<std::size_t>(j)];
+          if (e.facet == fi) continue;
+          const double kij = rho * quadrature::form_factor(P, nP, e.vertex[0], e.vertex[1], e.vertex[2], e.normal);
+          exact1 += kij;
+          exact2 += kij * wave[j];
         }
-        const double* m = &moments[static_cast<std::size_t>(cl) * T];
-        for (std::size_t t = 0; t < T; ++t) sum += coef[t] * m[t];  // (47)
       }
-      y[i] = sum;
+      const double f1 = apply_row(i, ones, m1, scratch.data()), f2 = apply_row(i, wave, m2, scratch.data());
+      errs[static_cast<std::size_t>(k)] = std::max(std::abs(f1 - exact1), std::abs(f2 - exact2));
+      refs[static_cast<std::size_t>(k)] = std::max(std::abs(exact1), std::abs(exact2));
     }
   }
+  for (int k = 0; k < samples; ++k) {
+    err = std::max(err, errs[static_cast<std::size_t>(k)]);
+    ref = std::max(ref, refs[static_cast<std::size_t>(k)]);
+  }
+  check.rows = samples;
+  check.relative_error = ref > 0 ? err / ref : err;
+  check.seconds = clock.seconds();
+  return check;
 }
 
 std::vector<Index> FastOperator::far_clusters(Index i) const {

@@ -39,6 +39,7 @@ struct CubeRow {
   // Fast method only (section 4): the covering's size and what was stored.
   std::size_t near_pairs = 0, far_pairs = 0, skipped_coplanar = 0;
   bool far_stored = false;
+  double checked_product_error = 0;  ///< FastOperator::self_check on sampled rows
 };
 
 /// Runs the levels in order; `on_row` (if set) sees each row as soon as it is done.

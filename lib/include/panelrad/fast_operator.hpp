@@ -39,6 +39,14 @@ struct FastStatistics {
   double far_s = 0;        ///< setup: far-field Taylor coefficients (44)-(45), when stored
 };
 
+/// The operator's own check of its accuracy on sampled rows (exact rows are O(n) each).
+struct FastSelfCheck {
+  int rows = 0;                 ///< rows sampled
+  double relative_error = 0;    ///< max |fast - exact| / max |exact| over the sampled rows, for
+                                ///< v = 1 and an oscillating v
+  double seconds = 0;
+};
+
 class FastOperator final : public RadiosityOperator {
  public:
   FastOperator(const Collocation& collocation, const FastOptions& options);
@@ -49,6 +57,10 @@ class FastOperator final : public RadiosityOperator {
   std::size_t bytes() const override { return stats_.bytes; }
   const FastStatistics& statistics() const { return stats_; }
   const FastOptions& options() const { return options_; }
+
+  /// Measures the product's real error on `samples` evenly spaced rows against the exact
+  /// closed-form rows (near field and far field together), for v = 1 and an oscillating v.
+  FastSelfCheck self_check(int samples = 32) const;
 
   /// Cluster ids of the far field and element ids of the near field of row i (for tests: the
   /// covering plus the skipped coplanar clusters must partition the surface). Cluster id =
@@ -62,6 +74,8 @@ class FastOperator final : public RadiosityOperator {
  private:
   void compute_moments(const Eigen::VectorXd& v, std::vector<double>& moments) const;
   void far_coefficients(geometry::Index i, geometry::Index cluster, double* c) const;
+  double apply_row(geometry::Index i, const Eigen::VectorXd& v, const std::vector<double>& moments,
+                   double* scratch) const;
 
   std::shared_ptr<const geometry::ClusterTree> tree_;
   FastOptions options_;
