@@ -18,7 +18,7 @@ namespace {
 const char* kCubeUsage =
     "usage: panelrad cube [--levels L] [--min-level L0] [--method dense|fast] [--near exact|quadrature]\n"
     "                     [--mu K] [--rule stroud7|three_point|degreeK] [--eta E] [--degree M]\n"
-    "                     [--solver neumann|gmres|lu] [--tol T|auto] [--threads T] [--csv PATH]\n"
+    "                     [--solver auto|neumann|gmres|lu] [--tol T|auto] [--threads T] [--csv PATH]\n"
     "  Solves the paper's cube example (rho 0.5/0.4/0.3, u = x^2+y^2+z^2) for n = 12 * 4^l,\n"
     "  l = L0..L (default 0..3), and prints a table like the paper's Table 1 / Tables 2-4.\n"
     "  --tol auto (default) iterates until the iteration error is ~1e-5 h/diam, far below the\n"
@@ -52,8 +52,8 @@ int run_cube(int argc, char** argv) {
       else if (a == "--eta") o.op.eta = parse_double(a, v, 1e-3, 0.99);
       else if (a == "--degree") o.op.degree = parse_int(a, v, 0, 12);
       else if (a == "--solver") {
-        if (v != "neumann" && v != "gmres" && v != "lu")
-          throw UsageError("--solver must be neumann, gmres or lu, got '" + v + "'");
+        if (v != "auto" && v != "neumann" && v != "gmres" && v != "lu")
+          throw UsageError("--solver must be auto, neumann, gmres or lu, got '" + v + "'");
         o.solver.kind = parse_solver(v);
       } else if (a == "--tol") o.solver.tolerance = v == "auto" ? 0.0 : parse_double(a, v, 1e-15, 0.5);
       else if (a == "--threads") threads = parse_int(a, v, 0, 1024);
@@ -85,6 +85,7 @@ int run_cube(int argc, char** argv) {
     std::cerr << "panelrad cube: error: " << e.what() << "\n";
     return 1;
   }
+  if (!rows.empty()) std::cout << "solver: " << rows.back().solver << "\n";
   print_cube_growth(std::cout, rows);
   if (!csv.empty()) {
     write_cube_csv(rows, csv);

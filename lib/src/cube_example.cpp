@@ -47,6 +47,7 @@ std::vector<CubeRow> run_paper_cube(const CubeRunOptions& options, const std::fu
     if (!(solver.tolerance > 0))
       solver.tolerance = discretization_tolerance(collocation.tree().mesh_size(), collocation.tree().diameter());
     const SolveResult result = solve(*K, collocation.emissivity(), solver, scene.max_reflectivity());
+    row.solver = result.choice.empty() ? result.solver : result.choice;
     row.solve_s = result.seconds;
     row.iterations = result.iterations;
     row.per_product_s = result.iterations > 0 ? result.seconds / result.iterations : 0;

@@ -27,14 +27,16 @@ void check_sizes(const RadiosityOperator& K, const Eigen::VectorXd& E) {
 }  // namespace
 
 SolverKind parse_solver(const std::string& name) {
+  if (name == "auto") return SolverKind::automatic;
   if (name == "neumann") return SolverKind::neumann;
   if (name == "gmres") return SolverKind::gmres;
   if (name == "lu") return SolverKind::lu;
-  throw std::invalid_argument("solver '" + name + "' is not neumann, gmres or lu");
+  throw std::invalid_argument("solver '" + name + "' is not auto, neumann, gmres or lu");
 }
 
 const char* to_string(SolverKind kind) {
   switch (kind) {
+    case SolverKind::automatic: return "auto";
     case SolverKind::neumann: return "neumann";
     case SolverKind::gmres: return "gmres";
     case SolverKind::lu: return "lu";
@@ -206,9 +208,28 @@ double discretization_tolerance(double h, double diameter) {
   return std::clamp(1e-5 * h / diameter, 1e-14, 1e-3);
 }
 
+SolverKind choose_solver(double max_reflectivity) {
+  return (max_reflectivity >= 0 && max_reflectivity <= 0.8) ? SolverKind::neumann : SolverKind::gmres;
+}
+
 SolveResult solve(const RadiosityOperator& K, const Eigen::VectorXd& E, const SolverOptions& options,
                   double max_reflectivity) {
+  if (options.kind == SolverKind::automatic) {
+    SolverOptions chosen = options;
+    chosen.kind = choose_solver(max_reflectivity);
+    SolveResult r = solve(K, E, chosen, max_reflectivity);
+    std::ostringstream os;
+    if (chosen.kind == SolverKind::neumann)
+      os << "auto: Neumann, since max rho = " << max_reflectivity << " <= 0.8 bounds its ratio (36)";
+    else if (max_reflectivity >= 0)
+      os << "auto: GMRES, since max rho = " << max_reflectivity << " > 0.8 would slow Neumann (ratio up to rho)";
+    else
+      os << "auto: GMRES, since rho varies by point and its maximum is unknown";
+    r.choice = os.str();
+    return r;
+  }
   switch (options.kind) {
+    case SolverKind::automatic: break;  // handled above
     case SolverKind::neumann: return solve_neumann(K, E, options);
     case SolverKind::gmres: return solve_gmres(K, E, options, max_reflectivity);
     case SolverKind::lu: {

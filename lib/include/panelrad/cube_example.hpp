@@ -22,6 +22,7 @@ struct CubeRunOptions {
 /// One line of the table / CSV.
 struct CubeRow {
   std::string method, near;
+  std::string solver;         ///< the solver that ran, and why when chosen automatically
   double eta = 0;   ///< fast only
   int mu = 0;
   int degree = 0;   ///< fast only

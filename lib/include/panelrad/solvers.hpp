@@ -12,12 +12,15 @@
 
 namespace panelrad {
 
-enum class SolverKind { neumann, gmres, lu };
-SolverKind parse_solver(const std::string& name);  ///< "neumann" | "gmres" | "lu"
+/// automatic: Neumann while the contraction bound max rho (paper (10)) is at most 0.8 (each step
+/// then gains at least a factor 1.25 and the ratio (36) is reported), GMRES above (Neumann's
+/// step count grows like 1/(1 - rho), GMRES's stays bounded).
+enum class SolverKind { automatic, neumann, gmres, lu };
+SolverKind parse_solver(const std::string& name);  ///< "auto" | "neumann" | "gmres" | "lu"
 const char* to_string(SolverKind kind);
 
 struct SolverOptions {
-  SolverKind kind = SolverKind::neumann;
+  SolverKind kind = SolverKind::automatic;
   /// Stop when the estimated error ||u_n - u^(k)||_inf <= tolerance * ||u^(k)||_inf. Tie it to the
   /// discretization error: there is no point in iterating far below it.
   double tolerance = 1e-10;
@@ -27,7 +30,8 @@ struct SolverOptions {
 
 struct SolveResult {
   Eigen::VectorXd u;
-  std::string solver;
+  std::string solver;              ///< the solver that ran
+  std::string choice;              ///< why it was chosen (automatic choice), else empty
   int iterations = 0;              ///< products with K_n
   double convergence_ratio = 0;    ///< Neumann: ratio (36), estimated by successive differences
   std::vector<double> ratio_history;
@@ -55,6 +59,9 @@ SolveResult solve_lu(const DenseOperator& K, const Eigen::VectorXd& E);
 /// (Theorem 5, (28)), about 0.03 h/diam relative on the cube (Table 1); iterating to
 /// 1e-5 h/diam keeps the iteration error near 0.03% of it. h: mesh size, diam: surface diameter.
 double discretization_tolerance(double h, double diameter);
+
+/// The solver `automatic` resolves to for this largest reflectivity (NaN: unknown -> GMRES).
+SolverKind choose_solver(double max_reflectivity);
 
 /// Dispatch on options.kind; LU needs a DenseOperator (std::invalid_argument otherwise).
 SolveResult solve(const RadiosityOperator& K, const Eigen::VectorXd& E, const SolverOptions& options,
