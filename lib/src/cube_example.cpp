@@ -68,8 +68,14 @@ std::string cube_csv_header() {
 std::string cube_csv_line(const CubeRow& r) {
   const bool fast = r.method == "fast";
   char buf[512];
-  std::snprintf(buf, sizeof buf, "%s,%s,%s,%d,%s,%d,%.6e,%.6g,%.6g,%d,%.6f,%.1f", r.method.c_str(), r.near.c_str(),
-                fast ? std::to_string(r.eta).c_str() : "", r.mu, fast ? std::to_string(r.degree).c_str() : "",
+  // eta and degree only mean something for the fast method, mu only for the quadrature rule.
+  const bool quadrature = r.near == "quadrature";
+  char eta[32] = "", mu[16] = "", degree[16] = "";
+  if (fast) std::snprintf(eta, sizeof eta, "%g", r.eta);
+  if (fast) std::snprintf(degree, sizeof degree, "%d", r.degree);
+  if (quadrature) std::snprintf(mu, sizeof mu, "%d", r.mu);
+  std::snprintf(buf, sizeof buf, "%s,%s,%s,%s,%s,%d,%.6e,%.6g,%.6g,%d,%.6f,%.1f", r.method.c_str(), r.near.c_str(), eta,
+                mu, degree,
                 static_cast<int>(r.n), r.max_error, r.setup_s, r.solve_s, r.iterations, r.conv_ratio, r.peak_rss_mb);
   return buf;
 }
