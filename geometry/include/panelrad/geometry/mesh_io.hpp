@@ -1,10 +1,19 @@
 #pragma once
 // Mesh input: OFF and OBJ files. Polygonal faces are fan-triangulated here (validation may
-// re-triangulate them exactly, see validation.hpp); vertices are shared.
+// re-triangulate them exactly, see validation.hpp); vertices are shared: vertices with exactly the
+// same coordinates are merged (so a "triangle soup" works) and vertices used by no face are
+// dropped, each reported in `notes`. Input face i becomes facet i.
+//
+// Accepted OFF: optional header keyword OFF / COFF / NOFF / CNOFF / STOFF ... (counts may follow on
+// the same line), "#" comments, one vertex per line (x y z, then any extra numbers such as normals
+// or colours), one face per line ("k i1 .. ik" then up to four colour numbers). Accepted OBJ: "v x y
+// z [w | r g b]", "f" with v, v/vt, v//vn, v/vt/vn and negative (relative) indices, line
+// continuation by a trailing backslash; vt, vn, vp, l, o, g, s, usemtl, mtllib are ignored.
 #include <panelrad/geometry/mesh.hpp>
 
 #include <iosfwd>
 #include <string>
+#include <vector>
 
 namespace panelrad::geometry {
 
@@ -12,10 +21,13 @@ namespace panelrad::geometry {
 /// file, the line and what is wrong: missing/unreadable file, unknown extension, empty or
 /// truncated file, garbage, a face index out of range, a face with fewer than 3 vertices, a
 /// non-finite coordinate. Never returns a partial mesh.
-TriangleMesh read_mesh(const std::string& path);
+/// Notes (merged duplicate vertices, dropped unused vertices) are appended to `notes` when given.
+TriangleMesh read_mesh(const std::string& path, std::vector<std::string>* notes = nullptr);
 
 /// The same from a stream; `name` is used in messages.
-TriangleMesh read_off(std::istream& in, const std::string& name);
-TriangleMesh read_obj(std::istream& in, const std::string& name);
+TriangleMesh read_off(std::istream& in, const std::string& name,
+                      std::vector<std::string>* notes = nullptr);
+TriangleMesh read_obj(std::istream& in, const std::string& name,
+                      std::vector<std::string>* notes = nullptr);
 
 }  // namespace panelrad::geometry

@@ -11,8 +11,12 @@ namespace panelrad::geometry {
 /// Outcome of validate_closed_convex().
 struct ValidationReport {
   bool valid = false;
-  std::string rule;     ///< broken rule when invalid: "finite", "non-degenerate", "closed",
-                        ///< "manifold", "convex", "non-empty"; empty when valid
+  std::string rule;     ///< broken rule when invalid, checked in this order: "structure" (bad
+                        ///< indices in a mesh built in code), "non-empty", "finite",
+                        ///< "non-degenerate" (zero-area triangle, or no enclosed volume),
+                        ///< "closed", "manifold" (edge in > 2 triangles, vertex not a single fan,
+                        ///< unused or coincident vertices, not orientable), "connected", "convex";
+                        ///< empty when valid
   std::string message;  ///< one line naming the rule, the first offending face or vertex
                         ///< (index and coordinates) and, for convexity, the worst violation
                         ///< relative to the mesh diameter
@@ -32,7 +36,12 @@ struct ValidationReport {
 /// A facet's vertex set is the union of the vertices of its triangles (facet_of_triangle).
 ValidationReport validate_closed_convex(TriangleMesh& mesh);
 
-/// Reads and validates; throws MeshError with the report's message when invalid.
+/// Number of maximal planar facets: classes of triangles joined across shared edges whose four
+/// vertices are exactly coplanar (a square split in two is one). Works on any mesh (edges not
+/// shared by exactly two triangles simply join nothing).
+std::size_t count_planar_facets(const TriangleMesh& mesh);
+
+/// Reads ("builtin:NAME" -> make_builtin(NAME), else read_mesh) and validates; throws MeshError with the report's message when invalid.
 /// Warnings (notes) are appended to `notes` when given.
 TriangleMesh load_closed_convex(const std::string& path_or_builtin,
                                 std::vector<std::string>* notes = nullptr);

@@ -1,0 +1,439 @@
+// Mesh input: strict OFF and OBJ readers with file:line error messages.
+//
+// OpenMesh's readers (OpenMesh::IO) are not used for the actual read: they drop faces that would
+// make the mesh non-manifold ("complex edge") with a message on stderr instead of an error, accept
+// truncated files silently and give no line numbers, so a bad file could become a silently wrong
+// mesh. The own tokenizer below knows the line of every token and refuses anything it does not
+// understand; the shared vertex structure is built here directly.
+#include <panelrad/geometry/mesh_io.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <istream>
+#include <iterator>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <string_view>
+#include <system_error>
+
+namespace panelrad::geometry {
+namespace {
+
+constexpr long long kMaxCount = std::numeric_limits<Index>::max();
+
+[[noreturn]] void fail(const std::string& name, long line, const std::string& what) {
+  if (line > 0) throw MeshError(name + ":" + std::to_string(line) + ": " + what);
+  throw MeshError(name + ": " + what);
+}
+
+std::string show(std::string_view token) {
+  constexpr std::size_t kMax = 40;
+  std::string s(token.substr(0, kMax));
+  if (token.size() > kMax) s += "...";
+  return "'" + s + "'";
+}
+
+/// One non-blank line of content (comment removed), split into tokens.
+struct Line {
+  long number = 0;
+  std::vector<std::string_view> tokens;
+};
+
+/// Splits `text` into content lines: '#' starts a comment, blank lines are skipped, bytes that
+/// cannot belong to a text mesh file are refused with their line and column. With
+/// `continuation`, a trailing backslash joins a line with the next (OBJ).
+std::vector<Line> split_lines(const std::string& text, const std::string& name, bool continuation,
+                              std::string& storage) {
+  // Joined OBJ lines need their own storage; string_views point into `storage`.
+  storage = text;
+  std::vector<Line> lines;
+  long number = 0;
+  std::size_t pos = 0;
+  Line pending;
+  bool has_pending = false;
+  while (pos < storage.size()) {
+    std::size_t end = storage.find('\n', pos);
+    if (end == std::string::npos) end = storage.size();
+    ++number;
+    std::string_view line(storage.data() + pos, end - pos);
+    pos = end + 1;
+    const std::size_t hash = line.find('#');
+    if (hash != std::string_view::npos) line = line.substr(0, hash);
+    for (std::size_t c = 0; c < line.size(); ++c) {
+      const auto b = static_cast<unsigned char>(line[c]);
+      const bool ok = (b >= 0x20 && b < 0x7f) || b == '\t' || b == '\r' || b == '\f' || b == '\v';
+      if (!ok) {
+        std::ostringstream os;
+        os << "unexpected byte 0x" << std::hex << static_cast<int>(b) << std::dec << " at column "
+           << c + 1 << " (binary data or garbage; only text meshes are read)";
+        fail(name, number, os.str());
+      }
+    }
+    bool continues = false;
+    if (continuation) {
+      std::size_t last = line.find_last_not_of(" \t\r\f\v");
+      if (last != std::string_view::npos && line[last] == '\\') {
+        continues = true;
+        line = line.substr(0, last);
+      }
+    }
+    if (!has_pending) {
+      pending = Line{};
+      pending.number = number;
+    }
+    std::size_t i = 0;
+    while (i < line.size()) {
+      while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+      std::size_t j = i;
+      while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
+      if (j > i) pending.tokens.push_back(line.substr(i, j - i));
+      i = j;
+    }
+    has_pending = continues;
+    if (!continues && !pending.tokens.empty()) lines.push_back(std::move(pending));
+  }
+  if (has_pending && !pending.tokens.empty()) lines.push_back(std::move(pending));
+  return lines;
+}
+
+enum class NumberStatus { ok, bad, out_of_range };
+
+NumberStatus parse_number(std::string_view token, double& value) {
+  if (token.size() > 1 && token[0] == '+' && token[1] != '-') token.remove_prefix(1);
+  const char* first = token.data();
+  const char* last = token.data() + token.size();
+  const auto [ptr, ec] = std::from_chars(first, last, value, std::chars_format::general);
+  if (ec == std::errc::result_out_of_range) return NumberStatus::out_of_range;
+  if (ec != std::errc() || ptr != last) return NumberStatus::bad;
+  return NumberStatus::ok;
+}
+
+bool parse_integer(std::string_view token, long long& value) {
+  if (token.size() > 1 && token[0] == '+' && token[1] != '-') token.remove_prefix(1);
+  const char* last = token.data() + token.size();
+  const auto [ptr, ec] = std::from_chars(token.data(), last, value);
+  return ec == std::errc() && ptr == last;
+}
+
+/// A coordinate: a number that must be finite.
+double coordinate(std::string_view token, const std::string& name, long line, const char* what) {
+  double v = 0;
+  switch (parse_number(token, v)) {
+    case NumberStatus::bad:
+      fail(name, line, std::string("bad number ") + show(token) + " in " + what);
+    case NumberStatus::out_of_range:
+      fail(name, line, std::string("non-finite coordinate ") + show(token) + " in " + what +
+                           " (outside the range of double)");
+    case NumberStatus::ok:
+      break;
+  }
+  if (!std::isfinite(v))
+    fail(name, line, std::string("non-finite coordinate ") + show(token) + " in " + what);
+  return v;
+}
+
+/// Any number (colours, normals, weights): must parse, may be anything finite or not.
+void any_number(std::string_view token, const std::string& name, long line, const char* what) {
+  double v = 0;
+  if (parse_number(token, v) == NumberStatus::bad)
+    fail(name, line, std::string("bad number ") + show(token) + " in " + what);
+}
+
+/// Faces as read: vertex indices (0-based, into the file's vertex list) and the line of each face.
+struct RawMesh {
+  std::vector<Vec3> vertices;
+  std::vector<Index> face_offsets{0};
+  std::vector<Index> face_indices;
+  std::vector<long> face_lines;
+};
+
+/// Builds the triangle mesh: merges vertices with identical coordinates, drops unused vertices,
+/// fan-triangulates each face (face i -> facet i).
+TriangleMesh build_mesh(const RawMesh& raw, const std::string& name, std::vector<std::string>* notes) {
+  const std::size_t nv = raw.vertices.size();
+  std::vector<char> used(nv, 0);
+  for (Index v : raw.face_indices) used[static_cast<std::size_t>(v)] = 1;
+
+  TriangleMesh mesh;
+  mesh.source = name;
+  std::vector<Index> new_index(nv, -1);
+  std::map<std::array<double, 3>, Index> by_position;  // value comparison: -0.0 merges with 0.0
+  std::size_t merged = 0;
+  std::size_t dropped = 0;
+  for (std::size_t v = 0; v < nv; ++v) {
+    if (!used[v]) {
+      ++dropped;
+      continue;
+    }
+    const Vec3& p = raw.vertices[v];
+    const auto [it, inserted] =
+        by_position.try_emplace({p.x(), p.y(), p.z()}, static_cast<Index>(mesh.vertices.size()));
+    if (inserted)
+      mesh.vertices.push_back(p);
+    else
+      ++merged;
+    new_index[v] = it->second;
+  }
+
+  const std::size_t nf = raw.face_lines.size();
+  mesh.num_facets = static_cast<Index>(nf);
+  for (std::size_t f = 0; f < nf; ++f) {
+    const auto begin = static_cast<std::size_t>(raw.face_offsets[f]);
+    const auto end = static_cast<std::size_t>(raw.face_offsets[f + 1]);
+    const Index a = new_index[static_cast<std::size_t>(raw.face_indices[begin])];
+    for (std::size_t k = begin + 1; k + 1 < end; ++k) {
+      mesh.triangles.push_back({a, new_index[static_cast<std::size_t>(raw.face_indices[k])],
+                                new_index[static_cast<std::size_t>(raw.face_indices[k + 1])]});
+      mesh.facet_of_triangle.push_back(static_cast<Index>(f));
+    }
+  }
+  if (notes) {
+    if (merged > 0)
+      notes->push_back(name + ": merged " + std::to_string(merged) +
+                       " vertices with identical coordinates (vertex numbers in later messages "
+                       "refer to the merged list)");
+    if (dropped > 0)
+      notes->push_back(name + ": dropped " + std::to_string(dropped) + " vertices used by no face" +
+                       (merged > 0 ? "" : " (vertex numbers in later messages refer to the rest)"));
+  }
+  return mesh;
+}
+
+void add_face(RawMesh& raw, const std::vector<Index>& face, long line) {
+  raw.face_indices.insert(raw.face_indices.end(), face.begin(), face.end());
+  raw.face_offsets.push_back(static_cast<Index>(raw.face_indices.size()));
+  raw.face_lines.push_back(line);
+}
+
+/// OFF header keyword: [ST][C][N][4][n]OFF. Returns false when `token` is not one.
+bool off_keyword(std::string_view token, const std::string& name, long line) {
+  if (token.size() < 3 || token.substr(token.size() - 3) != "OFF") return false;
+  std::string_view prefix = token.substr(0, token.size() - 3);
+  if (prefix.substr(0, 2) == "ST") prefix.remove_prefix(2);
+  if (!prefix.empty() && prefix[0] == 'C') prefix.remove_prefix(1);
+  if (!prefix.empty() && prefix[0] == 'N') prefix.remove_prefix(1);
+  if (!prefix.empty() && (prefix[0] == '4' || prefix[0] == 'n'))
+    fail(name, line, "OFF variant " + show(token) + " (4-D or n-D vertices) is not supported");
+  if (!prefix.empty()) fail(name, line, "unknown OFF header keyword " + show(token));
+  return true;
+}
+
+TriangleMesh parse_off(const std::string& text, const std::string& name, std::vector<std::string>* notes) {
+  if (text.empty()) fail(name, 0, "empty file");
+  std::string storage;
+  const std::vector<Line> lines = split_lines(text, name, false, storage);
+  if (lines.empty()) fail(name, 0, "empty file (no data, only blank lines or comments)");
+
+  std::size_t li = 0;
+  std::vector<std::string_view> counts;
+  long counts_line = lines[0].number;
+  if (off_keyword(lines[0].tokens[0], name, lines[0].number)) {
+    counts.assign(lines[0].tokens.begin() + 1, lines[0].tokens.end());
+    ++li;
+    if (!counts.empty() && counts[0] == "BINARY")
+      fail(name, lines[0].number, "binary OFF is not supported; write it as text");
+    if (counts.empty()) {
+      if (li >= lines.size()) fail(name, lines[0].number, "truncated file: nothing after the OFF header");
+      counts = lines[li].tokens;
+      counts_line = lines[li].number;
+      ++li;
+    }
+  } else {
+    long long probe = 0;
+    if (!parse_integer(lines[0].tokens[0], probe))
+      fail(name, lines[0].number,
+           "not an OFF file: expected the header 'OFF' or the counts, found " + show(lines[0].tokens[0]));
+    counts = lines[0].tokens;
+    ++li;
+  }
+  if (counts.size() < 2 || counts.size() > 3)
+    fail(name, counts_line,
+         "expected the counts 'vertices faces [edges]', found " + std::to_string(counts.size()) + " values");
+  long long count[3] = {0, 0, 0};
+  for (std::size_t i = 0; i < counts.size(); ++i)
+    if (!parse_integer(counts[i], count[i]) || count[i] < 0 || count[i] > kMaxCount)
+      fail(name, counts_line, "bad count " + show(counts[i]) + " (expected a non-negative integer)");
+  const long long nv = count[0];
+  const long long nf = count[1];
+  if (nv == 0) fail(name, counts_line, "empty mesh: the header declares 0 vertices");
+  if (nf == 0) fail(name, counts_line, "empty mesh: the header declares 0 faces");
+
+  RawMesh raw;
+  for (long long v = 0; v < nv; ++v, ++li) {
+    if (li >= lines.size())
+      fail(name, lines.back().number,
+           "truncated file: the header (line " + std::to_string(counts_line) + ") declares " +
+               std::to_string(nv) + " vertices, the file ends after " + std::to_string(v));
+    const Line& l = lines[li];
+    const std::string what = "vertex " + std::to_string(v);
+    if (l.tokens.size() < 3)
+      fail(name, l.number, what + " has " + std::to_string(l.tokens.size()) + " values, needs x y z");
+    if (l.tokens.size() > 12)
+      fail(name, l.number, what + " has " + std::to_string(l.tokens.size()) +
+                               " values (x y z plus at most normal, colour and texture coordinates); "
+                               "is the vertex count in the header right?");
+    Vec3 p;
+    for (int c = 0; c < 3; ++c) p[c] = coordinate(l.tokens[static_cast<std::size_t>(c)], name, l.number, what.c_str());
+    for (std::size_t t = 3; t < l.tokens.size(); ++t) any_number(l.tokens[t], name, l.number, what.c_str());
+    raw.vertices.push_back(p);
+  }
+  std::vector<Index> face;
+  for (long long f = 0; f < nf; ++f, ++li) {
+    if (li >= lines.size())
+      fail(name, lines.back().number,
+           "truncated file: the header (line " + std::to_string(counts_line) + ") declares " +
+               std::to_string(nf) + " faces, the file ends after " + std::to_string(f));
+    const Line& l = lines[li];
+    const std::string what = "face " + std::to_string(f);
+    long long k = 0;
+    if (!parse_integer(l.tokens[0], k))
+      fail(name, l.number, what + ": bad vertex count " + show(l.tokens[0]));
+    if (k < 3) fail(name, l.number, what + " has " + std::to_string(k) + " vertices; a face needs at least 3");
+    if (static_cast<long long>(l.tokens.size()) - 1 < k)
+      fail(name, l.number, what + " declares " + std::to_string(k) + " vertices but lists " +
+                               std::to_string(l.tokens.size() - 1));
+    const std::size_t extra = l.tokens.size() - 1 - static_cast<std::size_t>(k);
+    if (extra > 4)
+      fail(name, l.number, what + " has " + std::to_string(extra) +
+                               " values after its indices (a colour takes at most 4)");
+    face.clear();
+    for (long long i = 1; i <= k; ++i) {
+      const std::string_view tok = l.tokens[static_cast<std::size_t>(i)];
+      long long idx = 0;
+      if (!parse_integer(tok, idx)) fail(name, l.number, what + ": bad vertex index " + show(tok));
+      if (idx < 0 || idx >= nv)
+        fail(name, l.number, what + ": vertex index " + std::to_string(idx) + " out of range [0, " +
+                                 std::to_string(nv - 1) + "]");
+      face.push_back(static_cast<Index>(idx));
+    }
+    for (std::size_t t = 1 + static_cast<std::size_t>(k); t < l.tokens.size(); ++t)
+      any_number(l.tokens[t], name, l.number, (what + " colour").c_str());
+    add_face(raw, face, l.number);
+  }
+  if (li < lines.size())
+    fail(name, lines[li].number,
+         "unexpected data after the last face (the header declares " + std::to_string(nv) +
+             " vertices and " + std::to_string(nf) + " faces): " + show(lines[li].tokens[0]));
+  return build_mesh(raw, name, notes);
+}
+
+TriangleMesh parse_obj(const std::string& text, const std::string& name, std::vector<std::string>* notes) {
+  if (text.empty()) fail(name, 0, "empty file");
+  std::string storage;
+  const std::vector<Line> lines = split_lines(text, name, true, storage);
+  if (lines.empty()) fail(name, 0, "empty file (no data, only blank lines or comments)");
+
+  RawMesh raw;
+  std::vector<long long> pending;  // 1-based or resolved indices, checked against the final count
+  std::vector<long> pending_lines;
+  std::vector<Index> face;
+  for (const Line& l : lines) {
+    const std::string_view key = l.tokens[0];
+    if (key == "v") {
+      const std::string what = "vertex " + std::to_string(raw.vertices.size() + 1);
+      const std::size_t n = l.tokens.size() - 1;
+      if (n < 3 || n > 7)
+        fail(name, l.number, what + " has " + std::to_string(n) + " values (expected x y z [w | r g b])");
+      Vec3 p;
+      for (int c = 0; c < 3; ++c) p[c] = coordinate(l.tokens[static_cast<std::size_t>(c) + 1], name, l.number, what.c_str());
+      for (std::size_t t = 4; t < l.tokens.size(); ++t) any_number(l.tokens[t], name, l.number, what.c_str());
+      raw.vertices.push_back(p);
+    } else if (key == "f") {
+      const std::string what = "face " + std::to_string(raw.face_lines.size() + 1);
+      const std::size_t n = l.tokens.size() - 1;
+      if (n < 3) fail(name, l.number, what + " has " + std::to_string(n) + " vertices; a face needs at least 3");
+      face.clear();
+      for (std::size_t t = 1; t <= n; ++t) {
+        const std::string_view ref = l.tokens[t];
+        // v, v/vt, v//vn, v/vt/vn: the vertex index, then optional integer texture/normal indices.
+        std::array<std::string_view, 3> parts{};
+        std::size_t np = 0;
+        std::size_t start = 0;
+        while (true) {
+          const std::size_t slash = ref.find('/', start);
+          if (np == 3) fail(name, l.number, what + ": bad vertex reference " + show(ref));
+          parts[np++] = ref.substr(start, slash == std::string_view::npos ? std::string_view::npos : slash - start);
+          if (slash == std::string_view::npos) break;
+          start = slash + 1;
+        }
+        long long idx = 0;
+        if (!parse_integer(parts[0], idx) || idx == 0)
+          fail(name, l.number, what + ": bad vertex reference " + show(ref) +
+                                   " (expected v, v/vt, v//vn or v/vt/vn with a non-zero integer v)");
+        for (std::size_t p = 1; p < np; ++p) {
+          long long other = 0;
+          if (!parts[p].empty() && !parse_integer(parts[p], other))
+            fail(name, l.number, what + ": bad vertex reference " + show(ref));
+        }
+        const auto defined = static_cast<long long>(raw.vertices.size());
+        if (idx < 0) {
+          if (-idx > defined)
+            fail(name, l.number, what + ": relative vertex index " + std::to_string(idx) + " but only " +
+                                     std::to_string(defined) + " vertices are defined before this line");
+          idx = defined + idx;  // -1 is the last vertex defined so far
+        } else {
+          --idx;
+          if (idx > kMaxCount) fail(name, l.number, what + ": vertex index " + show(parts[0]) + " out of range");
+        }
+        face.push_back(static_cast<Index>(idx));
+        pending.push_back(idx);
+        pending_lines.push_back(l.number);
+      }
+      add_face(raw, face, l.number);
+    } else if (key == "vt" || key == "vn" || key == "vp" || key == "l" || key == "p" || key == "o" ||
+               key == "g" || key == "s" || key == "usemtl" || key == "mtllib") {
+      continue;  // texture coordinates, normals, lines, points, grouping and materials: not geometry here
+    } else {
+      fail(name, l.number, "unknown or unsupported OBJ statement " + show(key));
+    }
+  }
+  if (raw.vertices.empty()) fail(name, 0, "empty mesh: no vertices ('v' lines)");
+  if (raw.face_lines.empty()) fail(name, 0, "empty mesh: no faces ('f' lines)");
+  const auto nv = static_cast<long long>(raw.vertices.size());
+  for (std::size_t i = 0; i < pending.size(); ++i)
+    if (pending[i] >= nv)
+      fail(name, pending_lines[i], "vertex index " + std::to_string(pending[i] + 1) + " out of range [1, " +
+                                       std::to_string(nv) + "]");
+  return build_mesh(raw, name, notes);
+}
+
+std::string read_all(std::istream& in, const std::string& name) {
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) fail(name, 0, "read error");
+  return text;
+}
+
+}  // namespace
+
+TriangleMesh read_off(std::istream& in, const std::string& name, std::vector<std::string>* notes) {
+  return parse_off(read_all(in, name), name, notes);
+}
+
+TriangleMesh read_obj(std::istream& in, const std::string& name, std::vector<std::string>* notes) {
+  return parse_obj(read_all(in, name), name, notes);
+}
+
+TriangleMesh read_mesh(const std::string& path, std::vector<std::string>* notes) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (ec || !fs::exists(status)) fail(path, 0, "cannot open: no such file");
+  if (fs::is_directory(status)) fail(path, 0, "cannot read: is a directory");
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (ext != ".off" && ext != ".obj")
+    fail(path, 0, "unknown mesh format " + show(ext.empty() ? std::string("(no extension)") : ext) +
+                      ": expected .off or .obj");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(path, 0, "cannot open for reading");
+  const std::string text = read_all(in, path);
+  return ext == ".off" ? parse_off(text, path, notes) : parse_obj(text, path, notes);
+}
+
+}  // namespace panelrad::geometry

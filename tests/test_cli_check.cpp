@@ -1,0 +1,94 @@
+// `panelrad check`: output and exit status (0 valid, 1 invalid or unreadable, 2 usage error).
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <string>
+#include <sys/wait.h>
+
+namespace {
+
+const std::string kMeshes = std::string(PANELRAD_SOURCE_DIR) + "/examples/meshes/";
+
+struct CliRun {
+  int status = -1;
+  std::string output;  // stdout and stderr together
+};
+
+CliRun run(const std::string& args) {
+  CliRun r;
+  const std::string cmd = std::string("\"") + PANELRAD_CLI + "\" " + args + " 2>&1";
+  FILE* pipe = ::popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf{};
+  while (const std::size_t n = std::fread(buf.data(), 1, buf.size(), pipe)) r.output.append(buf.data(), n);
+  const int st = ::pclose(pipe);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return r;
+}
+
+#define EXPECT_CONTAINS(haystack, needle) \
+  EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << "output:\n" << (haystack)
+
+}  // namespace
+
+TEST(CliCheck, ValidMeshFile) {
+  const CliRun r = run("check " + kMeshes + "cube.off");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_CONTAINS(r.output, "source: " + kMeshes + "cube.off\n");
+  EXPECT_CONTAINS(r.output, "vertices: 8\n");
+  EXPECT_CONTAINS(r.output, "triangles: 12\n");
+  EXPECT_CONTAINS(r.output, "planar facets: 6\n");
+  EXPECT_CONTAINS(r.output, "surface area: 6\n");
+  EXPECT_CONTAINS(r.output, "valid: closed convex polyhedron\n");
+  const CliRun obj = run("check " + kMeshes + "triangular_prism.obj");
+  EXPECT_EQ(obj.status, 0) << obj.output;
+  EXPECT_CONTAINS(obj.output, "triangles: 8\n");
+}
+
+TEST(CliCheck, Builtins) {
+  const CliRun cube = run("check --builtin cube");
+  EXPECT_EQ(cube.status, 0) << cube.output;
+  EXPECT_CONTAINS(cube.output, "source: builtin:cube\n");
+  EXPECT_CONTAINS(cube.output, "surface area: 6\n");
+  const CliRun prism = run("check --builtin prism:6");
+  EXPECT_EQ(prism.status, 0) << prism.output;
+  EXPECT_CONTAINS(prism.output, "triangles: 20\n");
+  EXPECT_CONTAINS(prism.output, "planar facets: 8\n");
+  // Hexagon caps 2 * (3 sqrt(3) / 2) plus six unit squares: 6 + 3 sqrt 3 = 11.1961524227.
+  EXPECT_CONTAINS(prism.output, "surface area: 11.1961524227\n");
+  EXPECT_EQ(run("check --builtin=tetrahedron").status, 0);
+  EXPECT_EQ(run("check --builtin octahedron").status, 0);
+}
+
+TEST(CliCheck, RoundedDodecahedronNotesTheHull) {
+  const CliRun r = run("check " + kMeshes + "dodecahedron.off");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_CONTAINS(r.output, "note: the fan triangulation was not exactly convex");
+  EXPECT_CONTAINS(r.output, "input faces: 12\n");
+}
+
+TEST(CliCheck, InvalidMeshesExitOne) {
+  const CliRun l = run("check " + kMeshes + "l_block.off");
+  EXPECT_EQ(l.status, 1) << l.output;
+  EXPECT_CONTAINS(l.output, "invalid: convex: vertex 4 (1, 2, 0)");
+  const CliRun open = run("check " + kMeshes + "open_box.off");
+  EXPECT_EQ(open.status, 1) << open.output;
+  EXPECT_CONTAINS(open.output, "invalid: closed: ");
+  const CliRun missing = run("check " + kMeshes + "no_such_mesh.off");
+  EXPECT_EQ(missing.status, 1) << missing.output;
+  EXPECT_CONTAINS(missing.output, "no_such_mesh.off: cannot open: no such file");
+  const CliRun ext = run("check " + std::string(PANELRAD_SOURCE_DIR) + "/CMakeLists.txt");
+  EXPECT_EQ(ext.status, 1) << ext.output;
+  EXPECT_CONTAINS(ext.output, "unknown mesh format '.txt'");
+}
+
+TEST(CliCheck, UsageErrorsExitTwo) {
+  for (const char* args : {"check", "check --frobnicate", "check a.off b.off", "check --builtin",
+                           "check --builtin sphere", "check --builtin prism:2", "check --builtin cube x.off"}) {
+    const CliRun r = run(args);
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.output;
+    EXPECT_CONTAINS(r.output, "usage: panelrad check");
+  }
+  EXPECT_EQ(run("check --help").status, 0);
+}

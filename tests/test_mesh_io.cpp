@@ -1,0 +1,278 @@
+// Mesh input: OFF and OBJ readers, their error messages, and robustness against garbage.
+#include <panelrad/geometry/mesh_io.hpp>
+#include <panelrad/geometry/validation.hpp>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+
+#include <unistd.h>
+
+namespace pg = panelrad::geometry;
+
+namespace {
+
+const std::string kMeshes = std::string(PANELRAD_SOURCE_DIR) + "/examples/meshes/";
+
+pg::TriangleMesh off(const std::string& text, std::vector<std::string>* notes = nullptr) {
+  std::istringstream in(text);
+  return pg::read_off(in, "test.off", notes);
+}
+
+pg::TriangleMesh obj(const std::string& text, std::vector<std::string>* notes = nullptr) {
+  std::istringstream in(text);
+  return pg::read_obj(in, "test.obj", notes);
+}
+
+/// The MeshError message thrown by f, or "" when nothing is thrown.
+template <class F>
+std::string error_of(F f) {
+  try {
+    f();
+  } catch (const pg::MeshError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+#define EXPECT_CONTAINS(haystack, needle) \
+  EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << "message: " << (haystack)
+
+const std::string kTetraOff =
+    "OFF\n"
+    "4 4 6\n"
+    "1 0 0\n0 1 0\n0 0 1\n1 1 1\n"
+    "3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n";
+
+}  // namespace
+
+TEST(MeshIo, ReadsShippedCube) {
+  const pg::TriangleMesh m = pg::read_mesh(kMeshes + "cube.off");
+  EXPECT_EQ(m.vertices.size(), 8u);
+  EXPECT_EQ(m.triangles.size(), 12u);
+  EXPECT_EQ(m.num_facets, 6);
+  EXPECT_EQ(m.facet_of_triangle.size(), 12u);
+  EXPECT_DOUBLE_EQ(pg::surface_area(m), 6.0);  // six unit squares, exact in double
+  EXPECT_EQ(m.source, kMeshes + "cube.off");
+}
+
+TEST(MeshIo, PolygonFacesAreFanTriangulatedAndKeepTheirFacetId) {
+  const pg::TriangleMesh m = off("OFF\n5 1 0\n0 0 0\n1 0 0\n2 1 0\n1 2 0\n0 1 0\n5 0 1 2 3 4\n");
+  ASSERT_EQ(m.triangles.size(), 3u);
+  const std::array<pg::Index, 3> expected[3] = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}};
+  for (int t = 0; t < 3; ++t) {
+    EXPECT_EQ(m.triangles[t], expected[t]);
+    EXPECT_EQ(m.facet_of_triangle[t], 0);
+  }
+}
+
+TEST(MeshIo, OffWithCommentsColoursAndVariants) {
+  const std::string text =
+      "# exported by some tool\n"
+      "COFF # vertex colours follow the coordinates\n"
+      "\n"
+      "4 4 6   # counts\n"
+      "1 0 0 255 0 0 255\n"
+      "0 1 0 0 255 0 255   # a comment after a vertex\n"
+      "0 0 1 0 0 255 255\n"
+      "1 1 1 0.5 0.5 0.5 1\n"
+      "# faces with per-face colours\n"
+      "3 0 2 1 255 0 0\n"
+      "3 0 1 3 0.1 0.2 0.3 0.4\n"
+      "3 1 2 3 7\n"
+      "3 0 3 2\n";
+  const pg::TriangleMesh m = off(text);
+  EXPECT_EQ(m.vertices.size(), 4u);
+  EXPECT_EQ(m.triangles.size(), 4u);
+  EXPECT_EQ(m.vertices[3], pg::Vec3(1, 1, 1));
+  // Counts on the header line, NOFF normals, CRLF line ends.
+  const pg::TriangleMesh n = off(
+      "NOFF 4 4 6\r\n1 0 0 1 0 0\r\n0 1 0 0 1 0\r\n0 0 1 0 0 1\r\n1 1 1 1 1 1\r\n"
+      "3 0 2 1\r\n3 0 1 3\r\n3 1 2 3\r\n3 0 3 2\r\n");
+  EXPECT_EQ(n.triangles.size(), 4u);
+  // No header keyword at all (some exporters omit it).
+  EXPECT_EQ(off(kTetraOff.substr(4)).triangles.size(), 4u);
+}
+
+TEST(MeshIo, OffErrorsNameLineAndProblem) {
+  EXPECT_CONTAINS(error_of([] { off(""); }), "test.off: empty file");
+  EXPECT_CONTAINS(error_of([] { off("# only a comment\n\n   \n"); }), "empty file");
+  EXPECT_CONTAINS(error_of([] { off("OFF\n0 0 0\n"); }), "declares 0 vertices");
+  EXPECT_CONTAINS(error_of([] { off("OFF\n4 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 1\n"); }), "declares 0 faces");
+  // Truncated: fewer vertices or faces than the header says.
+  const std::string cut_vertices = "OFF\n4 4 6\n1 0 0\n0 1 0\n";
+  EXPECT_CONTAINS(error_of([&] { off(cut_vertices); }), "test.off:4: truncated file");
+  EXPECT_CONTAINS(error_of([&] { off(cut_vertices); }), "declares 4 vertices, the file ends after 2");
+  const std::string cut_faces = kTetraOff.substr(0, kTetraOff.rfind("3 0 3 2"));
+  EXPECT_CONTAINS(error_of([&] { off(cut_faces); }), "declares 4 faces, the file ends after 3");
+  // Truncated in the middle of a line.
+  EXPECT_CONTAINS(error_of([&] { off(kTetraOff.substr(0, kTetraOff.size() - 3)); }), "face 3 declares 3 vertices but lists 2");
+  // Bad numbers and garbage.
+  EXPECT_CONTAINS(error_of([] { off("OFF\n4 4 6\n1 0 0\n0 1x 0\n"); }), "test.off:4: bad number '1x' in vertex 1");
+  EXPECT_CONTAINS(error_of([] { off("OFF\nfour 4 6\n"); }), "test.off:2: bad count 'four'");
+  EXPECT_CONTAINS(error_of([] { off("hello world\n"); }), "test.off:1: not an OFF file");
+  EXPECT_CONTAINS(error_of([] { off(std::string("OFF\n4 4 6\n1 0 \x01\x02\n")); }), "test.off:3: unexpected byte 0x1");
+  EXPECT_CONTAINS(error_of([] { off(std::string("OFF\n4 4 6\n1 0 0\0\n", 17)); }), "unexpected byte 0x0 at column 6");
+  EXPECT_CONTAINS(error_of([] { off("OFF BINARY\n"); }), "binary OFF is not supported");
+  EXPECT_CONTAINS(error_of([] { off("4OFF\n"); }), "not supported");
+  // Faces: index out of range, too few vertices, bad index, too many trailing values.
+  std::string bad = kTetraOff;
+  bad.replace(bad.find("3 1 2 3"), 7, "3 1 2 4");
+  EXPECT_CONTAINS(error_of([&] { off(bad); }), "test.off:9: face 2: vertex index 4 out of range [0, 3]");
+  bad = kTetraOff;
+  bad.replace(bad.find("3 1 2 3"), 7, "2 1 2  ");
+  EXPECT_CONTAINS(error_of([&] { off(bad); }), "test.off:9: face 2 has 2 vertices; a face needs at least 3");
+  bad = kTetraOff;
+  bad.replace(bad.find("3 1 2 3"), 7, "3 1 -2 3");
+  EXPECT_CONTAINS(error_of([&] { off(bad); }), "vertex index -2 out of range");
+  bad = kTetraOff;
+  bad.replace(bad.find("3 1 2 3"), 7, "3 1 2 3 1 2 3 4 5");
+  EXPECT_CONTAINS(error_of([&] { off(bad); }), "face 2 has 5 values after its indices");
+  EXPECT_CONTAINS(error_of([&] { off(kTetraOff + "3 0 1 2\n"); }), "test.off:11: unexpected data after the last face");
+}
+
+TEST(MeshIo, NonFiniteCoordinatesAreRefused) {
+  for (const char* bad : {"nan", "NaN", "inf", "-inf", "infinity", "1e400"}) {
+    std::string text = kTetraOff;
+    text.replace(text.find("0 0 1\n"), 1, bad);
+    EXPECT_CONTAINS(error_of([&] { off(text); }), "test.off:5: non-finite coordinate");
+  }
+}
+
+TEST(MeshIo, ObjWithTextureNormalRefsAndNegativeIndices) {
+  const std::string text =
+      "# a tetrahedron\n"
+      "mtllib scene.mtl\n"
+      "o tetra\n"
+      "v 1 0 0\nv 0 1 0\nv 0 0 1\nv 1 1 1 1.0\n"
+      "vt 0 0\nvt 1 0\nvt 0 1\n"
+      "vn 0 0 1\n"
+      "g part\ns 1\nusemtl red\n"
+      "f 1/1 3/2 2/3\n"
+      "f 1//1 2//1 4//1\n"
+      "f -3/1/1 -2/2/1 \\\n"
+      "  -1/3/1\n"
+      "f -4 -1 -2\n";
+  const pg::TriangleMesh m = obj(text);
+  ASSERT_EQ(m.triangles.size(), 4u);
+  EXPECT_EQ(m.triangles[0], (std::array<pg::Index, 3>{0, 2, 1}));
+  EXPECT_EQ(m.triangles[1], (std::array<pg::Index, 3>{0, 1, 3}));
+  EXPECT_EQ(m.triangles[2], (std::array<pg::Index, 3>{1, 2, 3}));
+  EXPECT_EQ(m.triangles[3], (std::array<pg::Index, 3>{0, 3, 2}));
+  EXPECT_EQ(m.num_facets, 4);
+  pg::TriangleMesh copy = m;
+  EXPECT_TRUE(pg::validate_closed_convex(copy).valid);
+}
+
+TEST(MeshIo, ObjErrors) {
+  EXPECT_CONTAINS(error_of([] { obj(""); }), "test.obj: empty file");
+  EXPECT_CONTAINS(error_of([] { obj("v 0 0 0\nv 1 0 0\nv 0 1 0\n"); }), "no faces");
+  EXPECT_CONTAINS(error_of([] { obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n"); }), "test.obj:4: face 1: bad vertex reference '0'");
+  EXPECT_CONTAINS(error_of([] { obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n"); }), "test.obj:4: vertex index 4 out of range [1, 3]");
+  EXPECT_CONTAINS(error_of([] { obj("v 0 0 0\nv 1 0 0\nf -1 -2 -3\nv 0 1 0\n"); }),
+                  "test.obj:3: face 1: relative vertex index -3 but only 2 vertices");
+  EXPECT_CONTAINS(error_of([] { obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n"); }), "face 1 has 2 vertices");
+  EXPECT_CONTAINS(error_of([] { obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/x 2 3\n"); }), "bad vertex reference '1/x'");
+  EXPECT_CONTAINS(error_of([] { obj("v 0 0\n"); }), "test.obj:1: vertex 1 has 2 values");
+  EXPECT_CONTAINS(error_of([] { obj("v 0 0 nan\n"); }), "test.obj:1: non-finite coordinate 'nan'");
+  EXPECT_CONTAINS(error_of([] { obj("v 0 0 0\ncurv 0 1 1 2\n"); }), "test.obj:2: unknown or unsupported OBJ statement 'curv'");
+  EXPECT_CONTAINS(error_of([] { obj("\x7f\x45LF\x02\x01"); }), "test.obj:1: unexpected byte 0x7f");
+}
+
+TEST(MeshIo, TriangleSoupIsMergedAndUnusedVerticesDropped) {
+  // A tetrahedron as a triangle soup: 12 vertices, each triangle with its own copies, plus one
+  // vertex that no face uses.
+  const std::string soup =
+      "v 1 0 0\nv 0 0 1\nv 0 1 0\n"
+      "v 1 0 0\nv 0 1 0\nv 1 1 1\n"
+      "v 0 1 0\nv 0 0 1\nv 1 1 1\n"
+      "v 1 0 0\nv 1 1 1\nv 0 0 1\n"
+      "v 5 5 5\n"
+      "f 1 2 3\nf 4 5 6\nf 7 8 9\nf 10 11 12\n";
+  std::vector<std::string> notes;
+  pg::TriangleMesh m = obj(soup, &notes);
+  EXPECT_EQ(m.vertices.size(), 4u);
+  EXPECT_EQ(m.triangles.size(), 4u);
+  ASSERT_EQ(notes.size(), 2u);
+  EXPECT_CONTAINS(notes[0], "merged 8 vertices");
+  EXPECT_CONTAINS(notes[1], "dropped 1 vertices used by no face");
+  EXPECT_TRUE(pg::validate_closed_convex(m).valid);
+  // -0.0 and 0.0 are the same point.
+  EXPECT_EQ(obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nv -0.0 0 0\nf 1 2 3\nf 4 3 2\n").vertices.size(), 3u);
+}
+
+TEST(MeshIo, ReadMeshByExtensionAndFileErrors) {
+  const auto dir = std::filesystem::temp_directory_path() / ("panelrad_mesh_io_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto write = [&](const std::string& name, const std::string& text) {
+    std::ofstream(dir / name, std::ios::binary) << text;
+    return (dir / name).string();
+  };
+  EXPECT_EQ(pg::read_mesh(write("upper.OFF", kTetraOff)).triangles.size(), 4u);
+  const std::string stl = write("mesh.stl", "solid x\nendsolid x\n");
+  EXPECT_CONTAINS(error_of([&] { pg::read_mesh(stl); }), stl + ": unknown mesh format '.stl'");
+  EXPECT_CONTAINS(error_of([&] { pg::read_mesh(write("noext", kTetraOff)); }), "unknown mesh format '(no extension)'");
+  EXPECT_CONTAINS(error_of([&] { pg::read_mesh((dir / "missing.off").string()); }), "missing.off: cannot open: no such file");
+  std::filesystem::create_directories(dir / "dir.off");
+  EXPECT_CONTAINS(error_of([&] { pg::read_mesh((dir / "dir.off").string()); }), "is a directory");
+  const std::string empty = write("empty.obj", "");
+  EXPECT_CONTAINS(error_of([&] { pg::read_mesh(empty); }), empty + ": empty file");
+  // An OFF file given the .obj extension is read as OBJ and refused with the line.
+  EXPECT_CONTAINS(error_of([&] { pg::read_mesh(write("wrong.obj", kTetraOff)); }), "wrong.obj:1: unknown or unsupported OBJ statement 'OFF'");
+  std::filesystem::remove_all(dir);
+}
+
+TEST(MeshIo, ShippedMeshesAllRead) {
+  for (const char* name : {"cube.off", "hexagonal_prism.off", "triangular_prism.obj", "dodecahedron.off",
+                           "l_block.off", "open_box.off"}) {
+    SCOPED_TRACE(name);
+    const pg::TriangleMesh m = pg::read_mesh(kMeshes + name);
+    EXPECT_GT(m.triangles.size(), 0u);
+    EXPECT_EQ(m.facet_of_triangle.size(), m.triangles.size());
+  }
+  EXPECT_EQ(pg::read_mesh(kMeshes + "dodecahedron.off").num_facets, 12);
+  EXPECT_EQ(pg::read_mesh(kMeshes + "triangular_prism.obj").triangles.size(), 8u);
+}
+
+// Random byte mutations of real files: every outcome is a mesh or a MeshError, never a crash or
+// another exception; a mesh that is read is then validated, which must not crash either.
+TEST(MeshIo, MutatedFilesNeverCrash) {
+  std::mt19937 rng(12345);
+  for (const char* name : {"cube.off", "dodecahedron.off", "triangular_prism.obj"}) {
+    std::ifstream in(kMeshes + name, std::ios::binary);
+    const std::string original((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const bool is_obj = std::string(name).ends_with(".obj");
+    int read_ok = 0, refused = 0;
+    for (int trial = 0; trial < 1500; ++trial) {
+      std::string text = original;
+      const int edits = 1 + static_cast<int>(rng() % 4);
+      for (int e = 0; e < edits; ++e) {
+        const std::size_t pos = rng() % text.size();
+        switch (rng() % 4) {
+          case 0: text[pos] = static_cast<char>(rng() % 256); break;
+          case 1: text.erase(pos, 1 + rng() % 8); break;
+          case 2: text.insert(pos, 1, "0123456789 -.#\n/e"[rng() % 17]); break;
+          default: text.resize(pos); break;
+        }
+        if (text.empty()) text.push_back('x');
+      }
+      try {
+        std::istringstream s(text);
+        pg::TriangleMesh m = is_obj ? pg::read_obj(s, name) : pg::read_off(s, name);
+        ++read_ok;
+        const pg::ValidationReport r = pg::validate_closed_convex(m);
+        EXPECT_EQ(r.valid, r.rule.empty());
+      } catch (const pg::MeshError&) {
+        ++refused;
+      }
+    }
+    EXPECT_GT(refused, 0);
+    EXPECT_GT(read_ok, 0);
+  }
+}
