@@ -17,7 +17,8 @@ TriangleMesh make_cube();
 /// Facets: k sides, then bottom cap, then top cap.
 TriangleMesh make_prism(int k, double circumradius = 1.0, double height = 1.0);
 
-/// Regular tetrahedron and octahedron (edge length sqrt(2)-scaled unit forms).
+/// Regular tetrahedron (1,0,0),(0,1,0),(0,0,1),(1,1,1) and octahedron (+-1,0,0),(0,+-1,0),(0,0,+-1),
+/// both with edge length sqrt(2); one facet per triangle.
 TriangleMesh make_tetrahedron();
 TriangleMesh make_octahedron();
 
