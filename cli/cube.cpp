@@ -2,6 +2,7 @@
 #include "commands.hpp"
 #include "options.hpp"
 
+#include <panelrad/auto_parameters.hpp>
 #include <panelrad/cube_example.hpp>
 #include <panelrad/resources.hpp>
 #include <panelrad/text_output.hpp>
@@ -22,7 +23,11 @@ const char* kCubeUsage =
     "  Solves the paper's cube example (rho 0.5/0.4/0.3, u = x^2+y^2+z^2) for n = 12 * 4^l,\n"
     "  l = L0..L (default 0..3), and prints a table like the paper's Table 1 / Tables 2-4.\n"
     "  --tol auto (default) iterates until the iteration error is ~1e-5 h/diam, far below the\n"
-    "  discretization error O(h).\n";
+    "  discretization error O(h).\n"
+    "  --accuracy auto|manual: auto (the default) picks method, near rule, eta and M per level so\n"
+    "  that the error stays within 5% of the discretization error at the least measured cost\n"
+    "  (auto_parameters.hpp); any of --method --near --mu --rule --eta --degree, or --solver lu,\n"
+    "  means manual (defaults for the rest: dense, exact near field, eta 0.2, M 2).\n";
 }  // namespace
 
 int run_cube(int argc, char** argv) {
@@ -30,6 +35,8 @@ int run_cube(int argc, char** argv) {
   o.solver.tolerance = 0;  // auto: tied to the discretization error
   std::string csv;
   int threads = 0;
+  std::string accuracy;    // "", "auto" or "manual" as given
+  std::string manual_opt;  // the first option that sets a parameter by hand
   try {
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
@@ -39,7 +46,13 @@ int run_cube(int argc, char** argv) {
       }
       if (i + 1 >= argc) throw UsageError("option '" + a + "' needs a value (or is unknown)");
       const std::string v = argv[++i];
-      if (a == "--levels") o.max_level = parse_int(a, v, 0, 12);
+      if (a == "--method" || a == "--near" || a == "--mu" || a == "--rule" || a == "--eta" || a == "--degree") {
+        if (manual_opt.empty()) manual_opt = a;
+      }
+      if (a == "--accuracy") {
+        if (v != "auto" && v != "manual") throw UsageError("--accuracy must be auto or manual, got '" + v + "'");
+        accuracy = v;
+      } else if (a == "--levels") o.max_level = parse_int(a, v, 0, 12);
       else if (a == "--min-level") o.min_level = parse_int(a, v, 0, 12);
       else if (a == "--method") {
         if (v != "dense" && v != "fast") throw UsageError("--method must be dense or fast, got '" + v + "'");
@@ -61,6 +74,8 @@ int run_cube(int argc, char** argv) {
       else throw UsageError("unknown option '" + a + "'");
     }
     if (o.min_level > o.max_level) throw UsageError("--min-level is above --levels");
+    if (accuracy == "auto" && !manual_opt.empty())
+      throw UsageError("--accuracy auto chooses the parameters itself; " + manual_opt + " needs --accuracy manual");
     if (o.solver.kind == SolverKind::lu && o.op.method != "dense")
       throw UsageError("--solver lu needs --method dense");
   } catch (const UsageError& e) {
@@ -77,10 +92,44 @@ int run_cube(int argc, char** argv) {
       return 1;
     }
   }
-  print_cube_header(std::cout, o);
+  // --solver lu needs the dense matrix: it implies manual (dense) unless auto was asked for.
+  if (accuracy == "auto" && o.solver.kind == SolverKind::lu) {
+    std::cerr << "panelrad cube: --solver lu needs --accuracy manual (dense)\n" << kCubeUsage;
+    return 2;
+  }
+  const bool automatic = accuracy != "manual" && manual_opt.empty() && o.solver.kind != SolverKind::lu;
   std::vector<CubeRow> rows;
   try {
-    rows = run_paper_cube(o, [](const CubeRow& r) { print_cube_row(std::cout, r); });
+    if (!automatic) {
+      print_cube_header(std::cout, o);
+      rows = run_paper_cube(o, [](const CubeRow& r) { print_cube_row(std::cout, r); });
+    } else {
+      // Levels with the same automatic choice run as one group, under one header.
+      const geometry::TriangleMesh cube = make_paper_cube_scene().mesh();
+      for (int level = o.min_level; level <= o.max_level;) {
+        CubeRunOptions group = o;
+        group.op = choose_parameters(problem_size(cube, level));
+        group.min_level = level;
+        while (level + 1 <= o.max_level &&
+               describe_parameters(choose_parameters(problem_size(cube, level + 1))) == describe_parameters(group.op))
+          ++level;
+        group.max_level = level++;
+        std::cout << "accuracy auto: levels " << group.min_level << ".." << group.max_level << ": "
+                  << describe_parameters(group.op) << "\n";
+        print_cube_header(std::cout, group);
+        const double previous = rows.empty() ? 0.0 : rows.back().max_error;
+        const auto part = run_paper_cube(group, [previous, first = true](const CubeRow& r) mutable {
+          CubeRow shown = r;  // the error ratio continues across groups
+          if (first && previous > 0 && r.max_error > 0) shown.error_ratio = previous / r.max_error;
+          first = false;
+          print_cube_row(std::cout, shown);
+        });
+        for (CubeRow r : part) {
+          if (r.error_ratio == 0 && !rows.empty() && r.max_error > 0) r.error_ratio = rows.back().max_error / r.max_error;
+          rows.push_back(r);
+        }
+      }
+    }
   } catch (const std::exception& e) {
     std::cerr << "panelrad cube: error: " << e.what() << "\n";
     return 1;

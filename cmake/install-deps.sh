@@ -9,6 +9,7 @@ packages=(
   libboost-dev                           # header-only parts used by CGAL
   libopenmesh-dev                        # OFF/OBJ readers
   libgtest-dev libgmock-dev              # GoogleTest
+  gnuplot-nox                            # bench/plot_pareto.gp (error-time plot of bench/sweep)
 )
 missing=()
 for p in "${packages[@]}"; do
