@@ -19,12 +19,15 @@ struct SingularIntegralResult {
 };
 
 /// (1/pi) Int_Delta f(Q) G(P,Q) dS_Q to relative accuracy `rel_tol` (effective tolerance
-/// max(rel_tol, 1e-12)), for f smooth on the triangle.
-/// Well-separated P (dist >= 2 diam): adaptive midpoint subdivision with an embedded pair of
-/// collapsed Gauss rules (degree 10 / 8). Otherwise polar coordinates about the foot of P on the
-/// triangle's plane, angle split at the vertex directions and graded logarithmically towards
-/// directions parallel to an edge, radius in atan(r/|h|) below |h| and in ln r above, adaptive
-/// Gauss-Kronrod (7/15) in both: accurate also when P is within 1e-7 of an edge.
+/// max(rel_tol, 1e-12); for an integral that cancels, f changing sign, an absolute floor of
+/// 0.1 tol pi |form factor| max|f| applies), for f smooth on the triangle.
+/// The triangle is split hierarchically (4-way midpoint subdivision) before choosing the method:
+/// pieces S with dist(P, S) >= 0.4 diam(S) take a collapsed Gauss n x n rule (n from the ratio,
+/// error estimated against the (n-2) x (n-2) rule), pieces with P hanging closely over their
+/// interior take polar coordinates about the foot of P (angle split at the vertex directions and
+/// graded logarithmically, radius in atan(r/|h|) and ln r, adaptive Gauss-Kronrod 7/15), other
+/// pieces are split; then the piece with the largest estimate is refined (order n+2, or split)
+/// until the summed estimates meet the tolerance. Accurate also when P is within 1e-7 of an edge.
 /// 0 (and 0 evaluations) when P lies exactly in the plane of the triangle (h == 0).
 /// Errors: std::invalid_argument for an empty f, rel_tol <= 0, non-finite input or a zero-area
 /// triangle; std::runtime_error for a non-finite result or no convergence.
