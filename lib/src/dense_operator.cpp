@@ -1,13 +1,18 @@
 #include <panelrad/dense_operator.hpp>
 #include <panelrad/resources.hpp>
 
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
 namespace panelrad {
 
 std::size_t DenseOperator::matrix_bytes(geometry::Index n) {
-  return static_cast<std::size_t>(n) * static_cast<std::size_t>(n) * sizeof(double);
+  if (n <= 0) return 0;
+  const auto m = static_cast<std::size_t>(n);
+  // n^2 * 8 overflows size_t for n > 2^30.5: saturate, so that check_fits still refuses.
+  if (m > std::numeric_limits<std::size_t>::max() / sizeof(double) / m) return std::numeric_limits<std::size_t>::max();
+  return m * m * sizeof(double);
 }
 
 void DenseOperator::check_fits(geometry::Index n) {
