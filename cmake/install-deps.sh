@@ -9,6 +9,7 @@ packages=(
   libboost-dev                           # header-only parts used by CGAL
   libopenmesh-dev                        # OFF/OBJ readers
   libgtest-dev libgmock-dev              # GoogleTest
+  clang libclang-rt-14-dev libomp-dev    # fuzz/: libFuzzer and clang's sanitizer runtimes, clang's OpenMP
   gnuplot-nox                            # bench/plot_pareto.gp (error-time plot of bench/sweep)
 )
 missing=()

@@ -8,6 +8,7 @@
 #include <panelrad/fast_operator.hpp>
 #include <panelrad/geometry/builtin_scenes.hpp>
 #include <panelrad/geometry/validation.hpp>
+#include <panelrad/resources.hpp>
 #include <panelrad/scene.hpp>
 #include <panelrad/solvers.hpp>
 
@@ -45,7 +46,20 @@ struct BoxCase {
   int level;  // cube level 2: n = 192; prism:6 level 2: n = 320
 };
 
-class ClosedBox : public ::testing::TestWithParam<BoxCase> {};
+// n is a few hundred here and Neumann needs thousands of products: one thread each (the products
+// are bit-identical for any thread count, linear_operator.hpp), since a parallel region per tiny
+// product costs a scheduler time slice per barrier on a loaded machine (ctest -j, CI).
+class ClosedBox : public ::testing::TestWithParam<BoxCase> {
+ protected:
+  void SetUp() override {
+    threads_ = max_threads();
+    set_threads(1);
+  }
+  void TearDown() override { set_threads(threads_); }
+
+ private:
+  int threads_ = 1;
+};
 
 // Neumann on the constant solution: u^(k) tends to c with the ratio (36) equal to rho, so the
 // stopping rule q/(1-q) ||step|| <= tol ||u|| (solvers.cpp) is met when rho^(k+1) <= tol, i.e.

@@ -1,0 +1,107 @@
+// Regression inputs of the mesh-reader fuzzer (fuzz/, issue 5.5): every file under tests/data/fuzz
+// (also the fuzzer's seeds) goes through the fuzz target's checks, read as OFF and as OBJ: the
+// only failure allowed is a geometry::MeshError with a message; what parses is a consistent mesh,
+// and a mesh that validates either gives a finite cluster tree or is refused with a MeshError.
+// The fuzzer found no crash in 5 minutes (272,641 inputs); these are the hand-made adversarial
+// inputs (header counts near INT_MAX, index overflow, extreme coordinates) kept as a regression.
+#include <panelrad/geometry/cluster_tree.hpp>
+#include <panelrad/geometry/mesh_io.hpp>
+#include <panelrad/geometry/validation.hpp>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace panelrad::geometry;
+namespace fs = std::filesystem;
+
+const fs::path kDir = fs::path(PANELRAD_SOURCE_DIR) / "tests" / "data" / "fuzz";
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::vector<fs::path> inputs() {
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(kDir))
+    if (e.is_regular_file()) files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+// What the fuzz target checks (fuzz/fuzz_mesh_reader.cpp), as test assertions.
+void check_text(const std::string& text, bool obj, const std::string& what) {
+  std::istringstream in(text);
+  TriangleMesh mesh;
+  try {
+    mesh = obj ? read_obj(in, what) : read_off(in, what);
+  } catch (const MeshError& e) {
+    EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << "the message names the file: " << e.what();
+    return;
+  }  // any other exception fails the test (gtest reports it)
+  ASSERT_EQ(mesh.facet_of_triangle.size(), mesh.triangles.size()) << what;
+  for (const auto& t : mesh.triangles)
+    for (Index v : t) ASSERT_TRUE(v >= 0 && static_cast<std::size_t>(v) < mesh.vertices.size()) << what;
+  for (const auto& p : mesh.vertices) ASSERT_TRUE(p.allFinite()) << what;
+  const ValidationReport report = validate_closed_convex(mesh);
+  EXPECT_EQ(report.valid, report.rule.empty()) << what;
+  if (!report.valid) return;
+  try {
+    const ClusterTree tree(mesh, 1);
+    for (const auto& c : tree.elements())
+      EXPECT_TRUE(c.centre.allFinite() && c.normal.allFinite() && std::isfinite(c.radius) && c.area > 0) << what;
+  } catch (const MeshError& e) {
+    std::cout << "[fuzz regression] " << what << ": valid, tree refused: " << e.what() << "\n";
+  }
+}
+
+TEST(FuzzRegressions, EveryInputIsReadOrRefusedWithAMeshError) {
+  const auto files = inputs();
+  ASSERT_GE(files.size(), 10u) << kDir;
+  for (const auto& f : files) {
+    const std::string text = slurp(f);
+    check_text(text, false, f.filename().string() + " as OFF");
+    check_text(text, true, f.filename().string() + " as OBJ");
+  }
+}
+
+// A header count of 2e9 vertices in a 25-byte file must be refused from the data (truncated),
+// not by trying to reserve gigabytes (the fuzzer runs with -malloc_limit_mb=1024).
+TEST(FuzzRegressions, HugeHeaderCountsAreNotALicenceToAllocate) {
+  for (const char* name : {"header_count_2e9.off", "face_count_int_max.off"}) {
+    std::istringstream in(slurp(kDir / name));
+    EXPECT_THROW(read_off(in, name), MeshError) << name;
+  }
+}
+
+// Coordinates near the ends of the double range: the exact validation accepts these tetrahedra (it
+// is exact), but their areas and normals do not exist in double precision (area -nan for 1e308,
+// 0 for 1e-300), so `panelrad check` prints "valid" with "surface area: -nan" / "0". The cluster
+// tree refuses them with a clear MeshError, so no solve can go wrong; validation should refuse them
+// too. Disabled until geometry/src/validation.cpp (owned by another helper at the time of writing)
+// rejects them; enable it then.
+TEST(FuzzRegressions, DISABLED_ValidMeshesHaveAFinitePositiveArea) {
+  for (const char* name : {"coordinates_1e308.obj", "coordinates_1e-300.obj", "coordinates_denormal.obj"}) {
+    std::istringstream in(slurp(kDir / name));
+    TriangleMesh mesh = read_obj(in, name);
+    const ValidationReport report = validate_closed_convex(mesh);
+    if (report.valid) {
+      const double area = surface_area(mesh);
+      EXPECT_TRUE(std::isfinite(area) && area > 0) << name << ": valid with area " << area;
+    }
+  }
+}
+
+}  // namespace
