@@ -77,7 +77,7 @@ TEST(CliCube, UsageErrorsExitWithTwo) {
 
 // n = 12 * 4^8 = 786432: the dense matrix needs ~4.9 TB; refused at once with the estimate.
 TEST(CliCube, DenseLevelThatCannotFitIsRefusedBeforeWork) {
-  const CliRun r = run("cube --min-level 8 --levels 8");
+  const CliRun r = run("cube --method dense --min-level 8 --levels 8");
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("786432"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("needs"), std::string::npos) << r.output;
