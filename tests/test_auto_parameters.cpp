@@ -1,6 +1,7 @@
 // Automatic parameters (issue 5, point 2): the rule of auto_parameters.hpp keeps the solution
 // within 5% of the discretization error, is deterministic, and refuses bad input.
 #include <panelrad/auto_parameters.hpp>
+#include <panelrad/cube_example.hpp>
 #include <panelrad/collocation.hpp>
 #include <panelrad/geometry/builtin_scenes.hpp>
 #include <panelrad/geometry/validation.hpp>
@@ -164,4 +165,20 @@ TEST(AutoParameters, TheCriterionRejectsACheapSetting) {
   cheap.degree = 1;
   const Outcome r = solve_both(cube, 3, cheap);
   EXPECT_GT(r.deviation, 0.05 * r.reference_error);
+}
+
+// Issue 5.7: a setting whose self-check fails is tightened until the check passes.
+TEST(AutoParameters, FailedSelfCheckTightensTheParameters) {
+  panelrad::CubeRunOptions o;
+  o.min_level = o.max_level = 3;
+  o.op.method = "fast";
+  o.op.eta = 0.5;
+  o.op.degree = 1;  // far outside 5% (see the header's table)
+  o.tighten_on_failed_check = true;
+  const auto rows = panelrad::run_paper_cube(o);
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_GT(rows[0].tightened, 0);
+  const panelrad::ProblemSize size = panelrad::problem_size(panelrad::make_paper_cube_scene().mesh(), 3);
+  EXPECT_LE(rows[0].checked_product_error, panelrad::self_check_threshold(size));
+  EXPECT_GT(rows[0].degree, 1);
 }

@@ -63,14 +63,21 @@ OperatorOptions choose_parameters(const ProblemSize& size, double margin) {
   if (lambda < 5.5) {  // measured within 5% at cube n = 768..12288, prism n = 1280, 5120
     o.eta = 0.5;
     o.degree = 6;
-  } else if (lambda < 6.5) {  // deviation 3.2e-5, n-independent; 5% of the error at lambda 6: 4.8e-5
-    o.eta = 0.3;
-    o.degree = 4;
-  } else {  // deviation 4.7e-6, n-independent: within 5% up to lambda ~ 9
-    o.eta = 0.1;
-    o.degree = 2;
+  } else if (lambda < 7.5) {  // deviation 1.7e-5 (cube), 3.0e-5 (prism), n-independent; 5% of the
+                              // error: 4.8e-5 at lambda 6, 2.4e-5 at lambda 7 (cube)
+    o.eta = 0.4;
+    o.degree = 6;
+  } else {  // deviation 2.3e-6 (cube), 4.0e-6 (prism): within 5% up to lambda ~ 10
+    o.eta = 0.4;
+    o.degree = 8;
   }
   return o;
+}
+
+double self_check_threshold(const ProblemSize& size) {
+  if (!(size.mesh_size > 0) || !(size.diameter > 0))
+    throw std::invalid_argument("self_check_threshold: mesh size and diameter must be positive");
+  return 8e-3 * size.mesh_size / size.diameter;
 }
 
 OperatorOptions tighten_parameters(const OperatorOptions& options) {

@@ -17,6 +17,9 @@ struct CubeRunOptions {
   OperatorOptions op;
   /// solver.tolerance <= 0: tied to the discretization error per level (discretization_tolerance).
   SolverOptions solver;
+  /// Fast method: when the operator's self-check exceeds self_check_threshold(), tighten the
+  /// parameters (tighten_parameters) and rebuild, until it passes or nothing is stricter.
+  bool tighten_on_failed_check = false;
 };
 
 /// One line of the table / CSV.
@@ -41,6 +44,7 @@ struct CubeRow {
   std::size_t near_pairs = 0, far_pairs = 0, skipped_coplanar = 0;
   bool far_stored = false;
   double checked_product_error = 0;  ///< FastOperator::self_check on sampled rows
+  int tightened = 0;                  ///< times the parameters were tightened after a failed check
 };
 
 /// Runs the levels in order; `on_row` (if set) sees each row as soon as it is done.
