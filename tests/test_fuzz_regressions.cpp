@@ -86,21 +86,40 @@ TEST(FuzzRegressions, HugeHeaderCountsAreNotALicenceToAllocate) {
   }
 }
 
-// Coordinates near the ends of the double range: the exact validation accepts these tetrahedra (it
-// is exact), but their areas and normals do not exist in double precision (area -nan for 1e308,
-// 0 for 1e-300), so `panelrad check` prints "valid" with "surface area: -nan" / "0". The cluster
-// tree refuses them with a clear MeshError, so no solve can go wrong; validation should refuse them
-// too. Disabled until geometry/src/validation.cpp (owned by another helper at the time of writing)
-// rejects them; enable it then.
-TEST(FuzzRegressions, DISABLED_ValidMeshesHaveAFinitePositiveArea) {
+// Coordinates near the ends of the double range: the exact predicates accept these tetrahedra, but
+// their areas and normals do not exist in double precision (area -nan for 1e308, 0 for 1e-300),
+// and the exact convexity proof was fed an interior point that overflowed to inf (a CGAL assertion
+// "Creating an Mpzf from infinity or NaN" in builds with assertions, silently undefined without).
+// `panelrad check` printed "valid" with "surface area: -nan". Validation must refuse them under
+// the "finite" rule, naming the vertex or triangle.
+TEST(FuzzRegressions, CoordinatesOutsideTheDoubleRangeAreRefused) {
   for (const char* name : {"coordinates_1e308.obj", "coordinates_1e-300.obj", "coordinates_denormal.obj"}) {
     std::istringstream in(slurp(kDir / name));
     TriangleMesh mesh = read_obj(in, name);
     const ValidationReport report = validate_closed_convex(mesh);
-    if (report.valid) {
-      const double area = surface_area(mesh);
-      EXPECT_TRUE(std::isfinite(area) && area > 0) << name << ": valid with area " << area;
+    EXPECT_FALSE(report.valid) << name;
+    EXPECT_EQ(report.rule, "finite") << name << ": " << report.message;
+    EXPECT_TRUE(report.message.find("vertex") != std::string::npos ||
+                report.message.find("triangle") != std::string::npos)
+        << report.message;
+    std::cout << "[fuzz regression] " << name << ": " << report.message << "\n";
+  }
+  // The range is lengths from 1e-75 to 1e75: tetrahedra with legs 1e74 and 1e-74 are valid and
+  // have a finite positive area in double; legs 1e76 and 1e-76 are refused.
+  for (double s : {1e74, 1e-74, 1e76, 1e-76}) {
+    TriangleMesh mesh;
+    mesh.vertices = {Vec3(0, 0, 0), Vec3(s, 0, 0), Vec3(0, s, 0), Vec3(0, 0, s)};
+    mesh.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    mesh.facet_of_triangle = {0, 1, 2, 3};
+    mesh.num_facets = 4;
+    const ValidationReport report = validate_closed_convex(mesh);
+    if (s > 1e75 || s < 1e-75) {
+      EXPECT_EQ(report.rule, "finite") << s << ": " << report.message;
+      continue;
     }
+    EXPECT_TRUE(report.valid) << s << ": " << report.message;
+    const double area = surface_area(mesh);
+    EXPECT_TRUE(std::isfinite(area) && area > 0) << s << ": area " << area;
   }
 }
 

@@ -368,6 +368,55 @@ TEST(StressNumerics, TaylorDegreeUpToEightAndBeyond) {
   }
 }
 
+// Scenes at the far ends of the accepted range (validation accepts lengths 1e-75 .. 1e75): the
+// dense path is exact there (row sums = rho to rounding, measured at 1e+-150), but the fast far
+// field works in powers of absolute distances and overflows: NaN products from |scale| >= 1e80 at
+// M = 2 and from 1e40 at M = 12 (measured), and self_check then reports 0 (NaN comparisons), a
+// silently wrong "check passed". A solve still stops with a SolverError (NaN/Inf), tested below;
+// the disabled test states what must hold once the far field is made scale-free (e.g. local
+// coordinates divided by R(tau)): finite products and an honest self-check at every valid scale.
+TEST(StressNumerics, FastSolveAtExtremeScalesIsNeverSilentlyWrong) {
+  for (double s : {1e-70, 1e70}) {
+    TriangleMesh cube = geometry::make_cube();
+    for (Vec3& v : cube.vertices) v *= s;
+    const Scene scene = constant_scene(cube);
+    const Collocation col(scene, 2);
+    FastOptions o;
+    o.degree = 12;
+    try {
+      const FastOperator fast(col, o);
+      SolverOptions opt;
+      opt.tolerance = 1e-10;
+      const SolveResult r = solve(fast, col.emissivity(), opt, scene.max_reflectivity());
+      ASSERT_TRUE(r.u.allFinite()) << s;
+      EXPECT_LT((r.u.array() - kC).abs().maxCoeff(), 1e-6) << s;  // M = 12: product error ~1e-12
+      report("cube x" + std::to_string(s) + " M=12 max|u-c|", (r.u.array() - kC).abs().maxCoeff());
+    } catch (const std::exception& e) {  // refused or stopped: clear, never a NaN answer
+      std::cout << "[stress] cube x" << s << " M=12: " << e.what() << "\n";
+      EXPECT_GT(std::string(e.what()).size(), 10u);
+    }
+  }
+}
+
+TEST(StressNumerics, DISABLED_FastOperatorIsScaleFree) {
+  for (double s : {1e-70, 1e-40, 1e40, 1e70})
+    for (int M : {2, 12}) {
+      TriangleMesh cube = geometry::make_cube();
+      for (Vec3& v : cube.vertices) v *= s;
+      const Scene scene = constant_scene(cube);
+      const Collocation col(scene, 2);
+      FastOptions o;
+      o.degree = M;
+      const FastOperator fast(col, o);
+      Eigen::VectorXd ones = Eigen::VectorXd::Ones(col.size()), y;
+      fast.apply(ones, y);
+      EXPECT_TRUE(y.allFinite()) << s << " M " << M;
+      const double check = fast.self_check(16).relative_error;
+      EXPECT_TRUE(std::isfinite(check) && check < kFastTol) << s << " M " << M << ": " << check;
+      EXPECT_LT((y.array() - kRho).abs().maxCoeff(), kFastTol) << s << " M " << M;
+    }
+}
+
 // The largest cube level that runs in seconds in a test (level 6, n = 49,152) with the fast method
 // and the automatic solver, on the constant solution: ||u - c|| <= c d / (1 - rho - d) where d is
 // the fast operator's row-sum defect max |K 1 - rho| ((I - K)(u - c) = c (K 1 - rho 1)). The largest

@@ -590,6 +590,22 @@ ValidationReport validate_closed_convex(TriangleMesh& mesh) {
     if (CGAL::collinear(pts[at(tr[0])], pts[at(tr[1])], pts[at(tr[2])]))
       return reject("non-degenerate", d.triangle(static_cast<Index>(t)) + " has zero area (collinear vertices)");
   }
+  // Rule 2 continued: the exact predicates accept any finite doubles, but areas, normals and
+  // distances are computed in double precision (products of two coordinates, squared): lengths from
+  // 1e-75 to 1e75 keep those squares inside the double range (1e-308 .. 1e308). 1e308 coordinates
+  // gave area NaN and an interior point at infinity, 1e-300 ones area 0. Found by fuzz/.
+  for (Sz v = 0; v < nv; ++v)
+    if (mesh.vertices[v].cwiseAbs().maxCoeff() > 1e75)
+      return reject("finite", d.vertex(static_cast<Index>(v)) +
+                                  " is beyond 1e75, outside the range double-precision geometry can measure");
+  for (Sz t = 0; t < nt; ++t) {
+    const Tri& tr = mesh.triangles[t];
+    const Vec3& a = mesh.vertices[at(tr[0])];
+    const double area = 0.5 * (mesh.vertices[at(tr[1])] - a).cross(mesh.vertices[at(tr[2])] - a).stableNorm();
+    if (!(area >= 1e-150))
+      return reject("finite", d.triangle(static_cast<Index>(t)) +
+                                  " is below 1e-150 in area, too small for double-precision geometry; rescale the mesh");
+  }
 
   // Rule 4: closed 2-manifold: every edge in exactly two triangles, every vertex used and with a
   // single fan of triangles around it, no two vertices at the same point.
