@@ -188,7 +188,13 @@ FastOperator::FastOperator(const Collocation& collocation, const FastOptions& op
   stats_.covering_s = clock.seconds();  // covering (42) and near field (43)
   clock.restart();
   if (stats_.far_stored) {
-    far_coef_.resize(stats_.far_pairs * static_cast<std::size_t>(T));
+    try {
+      far_coef_ = LargeBuffer(stats_.far_pairs * static_cast<std::size_t>(T));
+    } catch (const std::bad_alloc&) {
+      stats_.far_stored = false;  // could not have the memory after all: recompute per product
+    }
+  }
+  if (stats_.far_stored) {
 #pragma omp parallel for schedule(dynamic, 64)
     for (Index i = 0; i < n_; ++i)
       for (std::int64_t j = far_start_[static_cast<std::size_t>(i)]; j < far_start_[static_cast<std::size_t>(i) + 1]; ++j)
@@ -196,7 +202,7 @@ FastOperator::FastOperator(const Collocation& collocation, const FastOptions& op
   }
   stats_.far_s = clock.seconds();
   stats_.bytes = near_col_.size() * sizeof(Index) + near_val_.size() * sizeof(double) +
-                 far_cluster_.size() * sizeof(Index) + far_coef_.size() * sizeof(double) +
+                 far_cluster_.size() * sizeof(Index) + far_coef_.bytes() +
                  (near_start_.size() + far_start_.size()) * sizeof(std::int64_t) + frame_.size() * sizeof(PlaneFrame) +
                  to_parent_.size() * sizeof(to_parent_[0]) + element_moments_.size() * sizeof(double) +
                  static_cast<std::size_t>(num_clusters) * static_cast<std::size_t>(T) * sizeof(double) /* moments per product */;

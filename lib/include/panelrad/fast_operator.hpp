@@ -6,6 +6,7 @@
 // sparse. Clusters coplanar with P_i contribute exactly 0 and are skipped; rows with rho = 0 too.
 #include <panelrad/collocation.hpp>
 #include <panelrad/far_field.hpp>
+#include <panelrad/large_buffer.hpp>
 #include <panelrad/linear_operator.hpp>
 #include <panelrad/near_field.hpp>
 
@@ -94,7 +95,7 @@ class FastOperator final : public RadiosityOperator {
   // Far field (CSR over rows): cluster id and, when stored, the rho-scaled Taylor coefficients.
   std::vector<std::int64_t> far_start_;
   std::vector<geometry::Index> far_cluster_;
-  std::vector<double> far_coef_;
+  LargeBuffer far_coef_;                         // uninitialized, huge pages, filled in parallel
   FastStatistics stats_;
 };
 
