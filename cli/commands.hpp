@@ -4,4 +4,5 @@
 namespace panelrad::cli {
 int run_check(int argc, char** argv);   // argv[0] == "check"
 int run_cube(int argc, char** argv);    // argv[0] == "cube"
+int run_solve(int argc, char** argv);   // argv[0] == "solve"
 }  // namespace panelrad::cli

@@ -14,6 +14,7 @@ void usage(std::ostream& os) {
         "  check MESH | check --builtin cube|prism:K|tetrahedron|octahedron\n"
         "      validate a closed convex polyhedral mesh (OFF or OBJ)\n"
         "  cube [options]   the paper's cube example (Table 1; --help for options)\n"
+        "  solve SCENE [options]   solve an OBJ+MTL or OFF+JSON scene, write CSV/PLY/VTK/PNG (--help)\n"
         "  version\n";
 }
 }  // namespace
@@ -27,6 +28,7 @@ int main(int argc, char** argv) {
   try {
     if (cmd == "check") return panelrad::cli::run_check(argc - 1, argv + 1);
     if (cmd == "cube") return panelrad::cli::run_cube(argc - 1, argv + 1);
+    if (cmd == "solve") return panelrad::cli::run_solve(argc - 1, argv + 1);
     if (cmd == "version" || cmd == "--version") {
       std::cout << "panelrad " << panelrad::version() << "\n";
       return 0;

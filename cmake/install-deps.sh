@@ -10,6 +10,8 @@ packages=(
   libopenmesh-dev                        # OFF/OBJ readers
   libgtest-dev libgmock-dev              # GoogleTest
   clang libclang-rt-14-dev libomp-dev    # fuzz/: libFuzzer and clang's sanitizer runtimes, clang's OpenMP
+  nlohmann-json3-dev                     # JSON sidecar of OFF scenes (panelrad solve)
+  libpng-dev                             # PNG picture of a solved scene
   gnuplot-nox                            # bench/plot_pareto.gp (error-time plot of bench/sweep)
 )
 missing=()

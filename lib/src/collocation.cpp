@@ -1,7 +1,9 @@
 #include <panelrad/collocation.hpp>
 #include <panelrad/resources.hpp>
 
+#include <cmath>
 #include <exception>
+#include <string>
 #include <stdexcept>
 
 namespace panelrad {
@@ -42,6 +44,21 @@ Collocation::Collocation(const Scene& scene, int level) {
   }
   if (failure) std::rethrow_exception(failure);
   emissivity_s_ = clock.seconds();
+}
+
+Collocation Collocation::with_row_weights(Eigen::VectorXd weights) const {
+  if (weights.size() != size()) throw std::invalid_argument("with_row_weights: weights size differs from n");
+  for (Index i = 0; i < size(); ++i)
+    if (!(std::isfinite(weights[i]) && weights[i] >= 0))
+      throw std::invalid_argument("with_row_weights: weight " + std::to_string(i) + " is not finite and >= 0");
+  Collocation c;
+  c.tree_ = tree_;
+  c.rho_ = std::move(weights);
+  c.E_ = E_;
+  c.true_u_ = true_u_;
+  c.tree_s_ = tree_s_;
+  c.emissivity_s_ = emissivity_s_;
+  return c;
 }
 
 double Collocation::max_error(const Eigen::VectorXd& v) const {

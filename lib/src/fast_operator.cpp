@@ -4,6 +4,8 @@
 #include <panelrad/quadrature/exact_integrals.hpp>
 #include <panelrad/resources.hpp>
 
+#include <cstdio>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -60,7 +62,11 @@ FastOperator::FastOperator(const Collocation& collocation, const FastOptions& op
   const int T = terms_ = num_taylor_terms(options_.degree);
   const int M = options_.degree;
   n_ = tree.num_elements();
+  const auto stage = [&](const std::string& what) {
+    if (options_.progress) options_.progress(what);
+  };
   Stopwatch clock;
+  stage("fast operator, n = " + std::to_string(n_) + ": cluster frames and element moments");
 
   // Cluster ids, plane frames about A(tau), offsets to the parent, element moments (48).
   level_offset_.resize(static_cast<std::size_t>(L) + 2);
@@ -97,6 +103,12 @@ FastOperator::FastOperator(const Collocation& collocation, const FastOptions& op
 
   stats_.geometry_s = clock.seconds();
   clock.restart();
+  {
+    char eta[32];
+    std::snprintf(eta, sizeof eta, "%g", options_.eta);
+    stage("fast operator: minimal admissible coverings (42) and near field (43), eta " + std::string(eta) + ", M " +
+          std::to_string(M));
+  }
   // One traversal per row, in blocks of rows: each block keeps its covering (and the near-field
   // integrals, (43) first sum) locally; blocks are then concatenated in row order, so the result
   // is identical for any thread count.
@@ -187,6 +199,8 @@ FastOperator::FastOperator(const Collocation& collocation, const FastOptions& op
   }
   stats_.covering_s = clock.seconds();  // covering (42) and near field (43)
   clock.restart();
+  stage("fast operator: far field (44)-(45), " + std::to_string(stats_.far_pairs) + " (point, cluster) pairs, " +
+        (stats_.far_stored ? "coefficients stored" : "coefficients recomputed per product (memory)"));
   if (stats_.far_stored) {
     try {
       far_coef_ = LargeBuffer(stats_.far_pairs * static_cast<std::size_t>(T));

@@ -69,6 +69,7 @@ SolveResult solve_neumann(const RadiosityOperator& K, const Eigen::VectorXd& E, 
     const double q = previous_norm > 0 ? step_norm / previous_norm : 0;  // estimate of (36)
     r.ratio_history.push_back(q);
     ratio = q;
+    if (options.progress) options.progress(r.iterations, q < 1 ? q / (1 - q) * step_norm : 0.0);
     previous_norm = step_norm;
     if (!u.allFinite()) throw SolverError("Neumann iteration produced NaN/Inf at step " + std::to_string(k));
     // Error bound from (35) with contraction q < 1: ||u_n - u^(k+1)|| <= q/(1-q) ||step||.
@@ -127,6 +128,7 @@ SolveResult solve_gmres(const RadiosityOperator& K, const Eigen::VectorXd& E, co
     double beta = res.norm();
     const double res_inf = inf_norm(res);
     r.error_estimate = amplification * res_inf;
+    if (options.progress) options.progress(r.iterations, r.error_estimate);
     if (r.error_estimate <= options.tolerance * std::max(inf_norm(u), 1e-300)) break;
     V.col(0) = res / beta;
     g.setZero();
@@ -155,6 +157,7 @@ SolveResult solve_gmres(const RadiosityOperator& K, const Eigen::VectorXd& E, co
       H(j + 1, j) = 0;
       g[j + 1] = -sn[j] * g[j];
       g[j] = cs[j] * g[j];
+      if (options.progress) options.progress(r.iterations, amplification * std::abs(g[j + 1]));
       // |g[j+1]| is the 2-norm residual; ||.||_inf <= ||.||_2
       if (amplification * std::abs(g[j + 1]) <= 0.5 * options.tolerance * std::max(inf_norm(u), inf_norm(E))) {
         ++j;

@@ -35,10 +35,17 @@ class Collocation {
   /// max_k |u(P_k) - v_k|, (51); requires a manufactured scene.
   double max_error(const Eigen::VectorXd& v) const;
 
+  /// The same discretization with rho(P_i) replaced by `weights` (finite, >= 0; a weight of 0
+  /// marks a row that is not needed): an operator built on it computes
+  /// (W v)_i = w_i / pi Int_S v G(P_i, Q) dS_Q. With w = 1 it is the irradiance operator H of a
+  /// multi-channel solve, K_n = diag(rho) H for every channel (issue 6). Shares the cluster tree.
+  Collocation with_row_weights(Eigen::VectorXd weights) const;
+
   double tree_seconds() const { return tree_s_; }
   double emissivity_seconds() const { return emissivity_s_; }
 
  private:
+  Collocation() = default;
   std::shared_ptr<const geometry::ClusterTree> tree_;
   Eigen::VectorXd rho_, E_, true_u_;
   double tree_s_ = 0, emissivity_s_ = 0;

@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -25,6 +26,9 @@ struct FastOptions {
   /// Far-field coefficients are stored when they take at most this many bytes (0: automatic,
   /// half of the available memory); otherwise they are recomputed in every product.
   std::size_t far_storage_limit = 0;
+  /// Called when a setup stage starts (cluster geometry, near field, far field), with a line
+  /// saying what it does, e.g. for progress on stderr. May be empty.
+  std::function<void(const std::string&)> progress;
 };
 
 /// What setup found and stored (issue: report the counts).

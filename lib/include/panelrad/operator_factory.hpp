@@ -4,6 +4,7 @@
 #include <panelrad/linear_operator.hpp>
 #include <panelrad/near_field.hpp>
 
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -14,6 +15,8 @@ struct OperatorOptions {
   NearFieldOptions near;         ///< near-field rule (dense: every entry)
   double eta = 0.2;              ///< admissibility parameter of (41), fast method
   int degree = 2;                ///< Taylor degree M of (44), fast method
+  /// Setup stages as they start (fast method), e.g. for progress on stderr. May be empty.
+  std::function<void(const std::string&)> progress;
 };
 
 std::unique_ptr<RadiosityOperator> make_operator(const Collocation& collocation, const OperatorOptions& options);

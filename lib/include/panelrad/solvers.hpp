@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -26,6 +27,9 @@ struct SolverOptions {
   double tolerance = 1e-10;
   int max_iterations = 1000;
   int gmres_restart = 60;
+  /// Called after every product with K_n (products so far, current error estimate; the estimate
+  /// is 0 before the iteration has one), e.g. for progress on stderr. May be empty.
+  std::function<void(int products, double error_estimate)> progress;
 };
 
 struct SolveResult {

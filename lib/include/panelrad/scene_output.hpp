@@ -1,0 +1,57 @@
+#pragma once
+// Outputs of a solved scene (issue 6): per-element radiosity as CSV, a PLY with per-face colours
+// (MeshLab, ParaView), a legacy VTK polydata file (ParaView), and a PNG picture from a default
+// viewpoint. Every file is written whole or not at all (write_file_atomically).
+#include <panelrad/geometry/mesh.hpp>
+
+#include <Eigen/Core>
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace panelrad {
+
+/// The solved field on the elements (finest-level triangles), C channels.
+struct ElementField {
+  std::vector<std::array<geometry::Vec3, 3>> triangle;  ///< element corners, counter-clockwise
+                                                        ///< seen from outside
+  std::vector<geometry::Vec3> inner_normal;             ///< n of (2), into the solid
+  std::vector<geometry::Vec3> centroid;                 ///< collocation point P_i, (22)
+  std::vector<double> area;
+  std::vector<geometry::Index> facet;                   ///< input facet of each element
+  std::vector<std::string> channels;                    ///< channel names, e.g. R, G, B
+  std::vector<Eigen::VectorXd> rho, emission, radiosity;  ///< [channel](element)
+  std::size_t size() const { return triangle.size(); }
+};
+
+/// CSV, one row per element: element,facet,x,y,z,area, then rho_<c>, E_<c>, u_<c> for each channel
+/// c (for a single channel: rho,E,u). Numbers with 17 significant digits (round-trip).
+void write_radiosity_csv(const std::string& path, const ElementField& field);
+
+/// ASCII PLY: vertices (shared, deduplicated bit-exactly) and one face per element with uchar
+/// red, green, blue (the picture's colour mapping) and float properties u_<c> per channel.
+void write_radiosity_ply(const std::string& path, const ElementField& field);
+
+/// Legacy ASCII VTK POLYDATA: points, triangles, CELL_DATA scalars facet, area and per channel
+/// rho_<c>, E_<c>, u_<c>.
+void write_radiosity_vtk(const std::string& path, const ElementField& field);
+
+struct RenderOptions {
+  int width = 960;
+  int height = 720;
+  /// Direction from the scene's centre towards the viewer (need not be unit).
+  geometry::Vec3 view_direction = geometry::Vec3(-1.0, -1.7, 1.2);
+};
+
+/// Colour of each element as shown in the picture and the PLY: RGB scenes (3 channels named R, G,
+/// B) map radiosity to colour with one exposure for all channels and gamma 2.2; any other channel
+/// set maps its first channel through a perceptual colour map between its min and max.
+std::vector<std::array<unsigned char, 3>> element_colours(const ElementField& field);
+
+/// PNG picture of the inside of the (convex, closed) scene: a cut-away view from outside along
+/// view_direction showing the faces whose inner side looks at the viewer (the far walls), each
+/// element flat-coloured by element_colours(), with a colour bar for scalar scenes.
+void write_radiosity_png(const std::string& path, const ElementField& field, const RenderOptions& options = {});
+
+}  // namespace panelrad

@@ -1,0 +1,468 @@
+// Scene files (issue 6): a validated closed convex mesh with rho and E per input facet, in one or
+// more channels, from OBJ + MTL or OFF + JSON sidecar. Every error names the file and the line or
+// facet; nothing is returned partially.
+#include <panelrad/geometry/mesh_io.hpp>
+#include <panelrad/geometry/validation.hpp>
+#include <panelrad/scene_file.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <optional>
+#include <set>
+#include <system_error>
+
+namespace panelrad {
+namespace {
+
+namespace fs = std::filesystem;
+using geometry::Index;
+using Json = nlohmann::json;
+
+[[noreturn]] void fail(const std::string& file, long line, const std::string& what) {
+  if (line > 0) throw SceneFileError(file + ":" + std::to_string(line) + ": " + what);
+  throw SceneFileError(file + ": " + what);
+}
+
+std::string in_quotes(const std::string& s) { return "'" + s + "'"; }
+
+/// Shortest round-trip text of a number (inf, nan as such).
+std::string number(double v) {
+  char buf[40];
+  const auto [ptr, ec] = std::to_chars(buf, buf + sizeof buf, v);
+  return ec == std::errc() ? std::string(buf, ptr) : std::to_string(v);
+}
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+/// The whole file; `role` says what it is for in messages ("MTL file named by x.obj:3").
+std::string read_text(const std::string& path, const std::string& role) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (ec || !fs::exists(status)) fail(path, 0, "cannot open " + role + ": no such file");
+  if (fs::is_directory(status)) fail(path, 0, "cannot read " + role + ": is a directory");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(path, 0, "cannot open " + role + " for reading");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) fail(path, 0, "read error in " + role);
+  return text;
+}
+
+/// One non-blank content line, split into tokens.
+struct Line {
+  long number = 0;
+  std::vector<std::string> tokens;
+};
+
+/// Content lines as geometry::read_obj sees them: '#' starts a comment, blank lines are skipped
+/// and, with `continuation`, a trailing backslash (after the comment is removed) joins a line
+/// with the next; a joined line has the number of its first line.
+std::vector<Line> split_lines(const std::string& text, bool continuation) {
+  std::vector<Line> lines;
+  long number = 0;
+  std::size_t pos = 0;
+  Line pending;
+  bool has_pending = false;
+  while (pos < text.size()) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string::npos) end = text.size();
+    ++number;
+    std::string_view line(text.data() + pos, end - pos);
+    pos = end + 1;
+    const std::size_t hash = line.find('#');
+    if (hash != std::string_view::npos) line = line.substr(0, hash);
+    bool continues = false;
+    if (continuation) {
+      const std::size_t last = line.find_last_not_of(" \t\r\f\v");
+      if (last != std::string_view::npos && line[last] == '\\') {
+        continues = true;
+        line = line.substr(0, last);
+      }
+    }
+    if (!has_pending) pending = Line{number, {}};
+    std::size_t i = 0;
+    while (i < line.size()) {
+      while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+      std::size_t j = i;
+      while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
+      if (j > i) pending.tokens.emplace_back(line.substr(i, j - i));
+      i = j;
+    }
+    has_pending = continues;
+    if (!continues && !pending.tokens.empty()) lines.push_back(std::move(pending));
+  }
+  if (has_pending && !pending.tokens.empty()) lines.push_back(std::move(pending));
+  return lines;
+}
+
+/// Tokens from `first` on, joined by single spaces (material names).
+std::string join_from(const std::vector<std::string>& tokens, std::size_t first) {
+  std::string s;
+  for (std::size_t t = first; t < tokens.size(); ++t) s += (s.empty() ? "" : " ") + tokens[t];
+  return s;
+}
+
+/// Checks one value of rho or E; returns what is wrong, or "" when fine.
+std::string value_problem(bool is_rho, double v) {
+  if (!std::isfinite(v)) return "is not a finite number";
+  if (is_rho && !(v >= 0.0 && v < 1.0)) return "is outside [0, 1) (paper (7): 0 <= rho < 1)";
+  if (!is_rho && v < 0.0) return "is negative (emission E must be >= 0)";
+  return "";
+}
+
+/// Reads and validates the mesh; notes get the reader's and the validator's notes.
+geometry::TriangleMesh load_mesh(const std::string& path, std::vector<std::string>& notes) {
+  geometry::TriangleMesh mesh;
+  try {
+    mesh = geometry::read_mesh(path, &notes);
+  } catch (const geometry::MeshError& e) {
+    throw SceneFileError(e.what());
+  }
+  const geometry::ValidationReport report = geometry::validate_closed_convex(mesh);
+  if (!report.valid) fail(path, 0, "invalid scene mesh: " + report.message);
+  for (const std::string& n : report.notes) notes.push_back(path + ": " + n);
+  return mesh;
+}
+
+// ---------------------------------------------------------------------------------------------
+// OBJ + MTL
+
+struct Material {
+  std::string file;
+  long line = 0;  ///< of newmtl
+  std::optional<std::array<double, 3>> kd;
+  long kd_line = 0;
+  std::array<double, 3> ke{0.0, 0.0, 0.0};
+  long ke_line = 0;
+};
+
+/// "Kd r g b" / "Ke r g b": exactly three numbers (a single grey value is not standard MTL).
+std::array<double, 3> colour(const Line& l, const std::string& file) {
+  const std::string& key = l.tokens[0];
+  if (l.tokens.size() != 4)
+    fail(file, l.number, key + " needs three numbers r g b, found " +
+                             (l.tokens.size() > 1 ? "'" + join_from(l.tokens, 1) + "'" : "none"));
+  std::array<double, 3> c{};
+  for (std::size_t k = 0; k < 3; ++k) {
+    std::string_view tok = l.tokens[k + 1];
+    if (tok.size() > 1 && tok[0] == '+' && tok[1] != '-') tok.remove_prefix(1);
+    const char* last = tok.data() + tok.size();
+    const auto [ptr, ec] = std::from_chars(tok.data(), last, c[k], std::chars_format::general);
+    if (ec == std::errc::result_out_of_range || (ec == std::errc() && ptr == last && !std::isfinite(c[k])))
+      fail(file, l.number, key + " component " + in_quotes(l.tokens[k + 1]) + " is not a finite number");
+    if (ec != std::errc() || ptr != last)
+      fail(file, l.number, key + " component " + in_quotes(l.tokens[k + 1]) + " is not a number");
+  }
+  return c;
+}
+
+/// Parses one MTL file into `materials` (name -> material).
+void parse_mtl(const std::string& path, const std::string& role, std::map<std::string, Material>& materials,
+               std::size_t& defined) {
+  const std::string text = read_text(path, role);
+  Material* current = nullptr;
+  std::string current_name;
+  for (const Line& l : split_lines(text, false)) {
+    const std::string& key = l.tokens[0];
+    if (key == "newmtl") {
+      if (l.tokens.size() < 2) fail(path, l.number, "newmtl without a material name");
+      current_name = join_from(l.tokens, 1);
+      const auto [it, inserted] = materials.try_emplace(current_name, Material{path, l.number, {}, 0, {}, 0});
+      if (!inserted)
+        fail(path, l.number, "material " + in_quotes(current_name) + " is defined twice (first at " + it->second.file +
+                                 ":" + std::to_string(it->second.line) + ")");
+      current = &it->second;
+      ++defined;
+    } else if (key == "Kd" || key == "Ke") {
+      if (!current) fail(path, l.number, key + " before any newmtl");
+      const std::array<double, 3> c = colour(l, path);
+      if (key == "Kd") {
+        current->kd = c;
+        current->kd_line = l.number;
+      } else {
+        current->ke = c;
+        current->ke_line = l.number;
+      }
+    }
+    // Ka, Ks, Ns, Ni, d, Tr, illum, map_*, ...: not radiosity data, ignored.
+  }
+}
+
+ChannelScene load_obj_scene(const std::string& path) {
+  ChannelScene scene;
+  scene.mesh = load_mesh(path, scene.notes);
+  const auto nf = static_cast<std::size_t>(scene.mesh.num_facets);
+
+  // The material of every face, counting 'f' statements exactly as geometry::read_obj does.
+  const std::vector<Line> lines = split_lines(read_text(path, "OBJ file"), true);
+  std::vector<std::pair<std::string, long>> libraries;  // MTL path, mtllib line
+  std::vector<std::string> face_material;
+  std::vector<long> face_line, face_usemtl_line;
+  std::string current;
+  long current_line = 0;
+  for (const Line& l : lines) {
+    const std::string& key = l.tokens[0];
+    if (key == "mtllib") {
+      if (l.tokens.size() < 2) fail(path, l.number, "mtllib without a file name");
+      for (std::size_t t = 1; t < l.tokens.size(); ++t) {
+        const std::string lib = (fs::path(path).parent_path() / l.tokens[t]).string();
+        const bool seen = std::any_of(libraries.begin(), libraries.end(), [&](const auto& x) { return x.first == lib; });
+        if (!seen) libraries.emplace_back(lib, l.number);
+      }
+    } else if (key == "usemtl") {
+      if (l.tokens.size() < 2) fail(path, l.number, "usemtl without a material name");
+      current = join_from(l.tokens, 1);
+      current_line = l.number;
+    } else if (key == "f") {
+      if (current.empty())
+        fail(path, l.number, "facet " + std::to_string(face_material.size()) +
+                                 " comes before any usemtl (every face needs a material)");
+      face_material.push_back(current);
+      face_line.push_back(l.number);
+      face_usemtl_line.push_back(current_line);
+    }
+  }
+  if (face_material.size() != nf)
+    fail(path, 0, "internal error: " + std::to_string(face_material.size()) + " 'f' statements but the mesh has " +
+                      std::to_string(nf) + " facets");
+  if (libraries.empty()) fail(path, 0, "no mtllib statement: the scene's materials (Kd = rho, Ke = E) are needed");
+
+  std::map<std::string, Material> materials;
+  std::size_t defined = 0;
+  std::string library_names;
+  for (const auto& [lib, line] : libraries) {
+    parse_mtl(lib, "MTL file named by " + path + ":" + std::to_string(line), materials, defined);
+    library_names += (library_names.empty() ? "" : ", ") + fs::path(lib).filename().string();
+  }
+
+  scene.channels = {"R", "G", "B"};
+  scene.rho.assign(3, std::vector<double>(nf, 0.0));
+  scene.emission.assign(3, std::vector<double>(nf, 0.0));
+  scene.facet_material = face_material;
+  std::set<std::string> checked;
+  for (std::size_t f = 0; f < nf; ++f) {
+    const std::string& name = face_material[f];
+    const std::string facet = "facet " + std::to_string(f) + " (" + path + ":" + std::to_string(face_line[f]) + ")";
+    const auto it = materials.find(name);
+    if (it == materials.end())
+      fail(path, face_usemtl_line[f], "usemtl " + in_quotes(name) + ": unknown material (not defined in " + library_names +
+                                          "), used by " + facet);
+    const Material& m = it->second;
+    if (!m.kd)
+      fail(m.file, m.line, "material " + in_quotes(name) + " has no Kd (its reflectivity rho), used by " + facet);
+    if (checked.insert(name).second) {  // first facet using it: check the values once
+      static const char* const kChannel[3] = {"R", "G", "B"};
+      for (int c = 0; c < 3; ++c) {
+        const std::string rho_problem = value_problem(true, (*m.kd)[c]);
+        if (!rho_problem.empty())
+          fail(m.file, m.kd_line, "material " + in_quotes(name) + ": rho = Kd " + kChannel[c] + " = " +
+                                      number((*m.kd)[c]) + " " + rho_problem + "; first used by " + facet);
+        const std::string e_problem = value_problem(false, m.ke[c]);
+        if (!e_problem.empty())
+          fail(m.file, m.ke_line, "material " + in_quotes(name) + ": E = Ke " + kChannel[c] + " = " +
+                                      number(m.ke[c]) + " " + e_problem + "; first used by " + facet);
+      }
+    }
+    for (std::size_t c = 0; c < 3; ++c) {
+      scene.rho[c][f] = (*m.kd)[c];
+      scene.emission[c][f] = m.ke[c];
+    }
+  }
+  scene.notes.push_back("materials: " + std::to_string(defined) + " from " + library_names + ", " +
+                        std::to_string(checked.size()) + " used by " + std::to_string(nf) + " facets");
+  return scene;
+}
+
+// ---------------------------------------------------------------------------------------------
+// OFF + JSON sidecar
+
+/// A value for all channels: a number, or an array of one number per channel.
+std::vector<double> channel_values(const Json& v, std::size_t channels, const std::string& file,
+                                   const std::string& where) {
+  if (v.is_number()) return std::vector<double>(channels, v.get<double>());
+  if (!v.is_array())
+    fail(file, 0, where + " is " + v.dump() + ": expected a number" +
+                      (channels > 1 ? " or an array of " + std::to_string(channels) + " numbers (one per channel)" : ""));
+  if (v.size() != channels)
+    fail(file, 0, where + " has " + std::to_string(v.size()) + " values, expected " + std::to_string(channels) +
+                      " (one per channel)");
+  std::vector<double> out;
+  for (std::size_t c = 0; c < channels; ++c) {
+    if (!v[c].is_number()) fail(file, 0, where + "[" + std::to_string(c) + "] is " + v[c].dump() + ": not a number");
+    out.push_back(v[c].get<double>());
+  }
+  return out;
+}
+
+/// Checks rho or E values of `where`; `channel_names` for messages.
+void check_values(const std::vector<double>& values, bool is_rho, const std::vector<std::string>& channel_names,
+                  const std::string& file, const std::string& where) {
+  for (std::size_t c = 0; c < values.size(); ++c) {
+    const std::string problem = value_problem(is_rho, values[c]);
+    if (!problem.empty())
+      fail(file, 0, where + ": " + (is_rho ? "rho" : "E") + " (channel " + channel_names[c] + ") = " +
+                        number(values[c]) + " " + problem);
+  }
+}
+
+ChannelScene load_off_scene(const std::string& path, const std::string& materials_path) {
+  ChannelScene scene;
+  scene.mesh = load_mesh(path, scene.notes);
+  const auto nf = static_cast<std::size_t>(scene.mesh.num_facets);
+
+  const std::string file =
+      materials_path.empty() ? fs::path(path).replace_extension(".json").string() : materials_path;
+  {
+    std::error_code ec;
+    if (!fs::exists(file, ec))
+      fail(file, 0, "facet data not found: expected this JSON sidecar for " + path +
+                        (materials_path.empty() ? " (the OFF's path with extension .json)" : ""));
+  }
+  Json doc;
+  try {
+    doc = Json::parse(read_text(file, "JSON sidecar of " + path));
+  } catch (const Json::parse_error& e) {
+    fail(file, 0, "JSON parse error at byte " + std::to_string(e.byte) + ": " + e.what());
+  } catch (const Json::exception& e) {  // e.g. a number too large for a double
+    fail(file, 0, std::string("JSON error: ") + e.what());
+  }
+  if (!doc.is_object()) fail(file, 0, "expected a JSON object with \"channels\", \"default\", \"facets\"");
+  for (const auto& [key, value] : doc.items())
+    if (key != "channels" && key != "default" && key != "facets")
+      fail(file, 0, "unknown key " + in_quotes(key) + " (expected \"channels\", \"default\", \"facets\")");
+
+  // Channels.
+  if (doc.contains("channels")) {
+    const Json& ch = doc["channels"];
+    if (!ch.is_array() || ch.empty()) fail(file, 0, "\"channels\" must be a non-empty array of names");
+    for (std::size_t c = 0; c < ch.size(); ++c) {
+      if (!ch[c].is_string() || ch[c].get<std::string>().empty())
+        fail(file, 0, "channels[" + std::to_string(c) + "] is " + ch[c].dump() + ": expected a non-empty name");
+      const std::string name = ch[c].get<std::string>();
+      if (std::find(scene.channels.begin(), scene.channels.end(), name) != scene.channels.end())
+        fail(file, 0, "channel " + in_quotes(name) + " is named twice");
+      scene.channels.push_back(name);
+    }
+  } else {
+    scene.channels = {"value"};
+  }
+  const std::size_t nc = scene.channels.size();
+
+  // Default values.
+  std::optional<std::vector<double>> default_rho, default_e;
+  if (doc.contains("default")) {
+    const Json& d = doc["default"];
+    if (!d.is_object()) fail(file, 0, "\"default\" is " + d.dump() + ": expected an object {\"rho\": .., \"E\": ..}");
+    for (const auto& [key, value] : d.items()) {
+      if (key != "rho" && key != "E")
+        fail(file, 0, "unknown key " + in_quotes(key) + " in \"default\" (expected \"rho\", \"E\")");
+      std::vector<double> v = channel_values(value, nc, file, "default " + key);
+      check_values(v, key == "rho", scene.channels, file, "default");
+      (key == "rho" ? default_rho : default_e) = std::move(v);
+    }
+  }
+
+  // Facet entries.
+  std::vector<std::optional<std::vector<double>>> rho(nf), e(nf);
+  std::vector<long> entry_of(nf, -1);
+  if (doc.contains("facets")) {
+    const Json& facets = doc["facets"];
+    if (!facets.is_array()) fail(file, 0, "\"facets\" must be an array of {\"id\" or \"ids\", \"rho\", \"E\"}");
+    for (std::size_t k = 0; k < facets.size(); ++k) {
+      const Json& entry = facets[k];
+      const std::string at = "facets[" + std::to_string(k) + "]";
+      if (!entry.is_object()) fail(file, 0, at + " is " + entry.dump() + ": expected an object");
+      for (const auto& [key, value] : entry.items())
+        if (key != "id" && key != "ids" && key != "rho" && key != "E")
+          fail(file, 0, at + ": unknown key " + in_quotes(key) + " (expected \"id\" or \"ids\", \"rho\", \"E\")");
+      if (entry.contains("id") == entry.contains("ids"))
+        fail(file, 0, at + ": needs exactly one of \"id\" (a facet) or \"ids\" (a list of facets)");
+      if (!entry.contains("rho") && !entry.contains("E")) fail(file, 0, at + ": gives neither \"rho\" nor \"E\"");
+      std::vector<Json> ids;
+      if (entry.contains("id")) {
+        ids.push_back(entry["id"]);
+      } else {
+        const Json& list = entry["ids"];
+        if (!list.is_array() || list.empty()) fail(file, 0, at + ": \"ids\" must be a non-empty array of facet ids");
+        ids.assign(list.begin(), list.end());
+      }
+      std::vector<std::size_t> targets;
+      for (const Json& id : ids) {
+        if (!id.is_number_integer())
+          fail(file, 0, at + ": facet id " + id.dump() + " is not an integer");
+        const auto value = id.get<long long>();
+        if (value < 0 || static_cast<unsigned long long>(value) >= nf)
+          fail(file, 0, at + ": facet " + std::to_string(value) + " is out of range [0, " + std::to_string(nf - 1) +
+                            "] (" + path + " has " + std::to_string(nf) + " faces)");
+        const auto f = static_cast<std::size_t>(value);
+        if (entry_of[f] >= 0)
+          fail(file, 0, at + ": facet " + std::to_string(f) + " is given twice (also in " +
+                            (entry_of[f] == static_cast<long>(k) ? "this entry"
+                                                                 : "facets[" + std::to_string(entry_of[f]) + "]") +
+                            ")");
+        entry_of[f] = static_cast<long>(k);
+        targets.push_back(f);
+      }
+      const std::string who = at + " (facet " + std::to_string(targets.front()) +
+                              (targets.size() > 1 ? " and " + std::to_string(targets.size() - 1) + " more" : "") + ")";
+      for (const char* key : {"rho", "E"}) {
+        if (!entry.contains(key)) continue;
+        const bool is_rho = std::string(key) == "rho";
+        const std::vector<double> v = channel_values(entry[key], nc, file, who + " " + key);
+        check_values(v, is_rho, scene.channels, file, who);
+        for (std::size_t f : targets) (is_rho ? rho : e)[f] = v;
+      }
+    }
+  }
+
+  // Every facet needs both values, from its entry or the default.
+  scene.rho.assign(nc, std::vector<double>(nf, 0.0));
+  scene.emission.assign(nc, std::vector<double>(nf, 0.0));
+  scene.facet_material.assign(nf, "");
+  std::size_t listed = 0;
+  for (std::size_t f = 0; f < nf; ++f) {
+    if (entry_of[f] >= 0) ++listed;
+    for (const bool is_rho : {true, false}) {
+      const auto& given = (is_rho ? rho : e)[f];
+      const auto& fallback = is_rho ? default_rho : default_e;
+      if (!given && !fallback)
+        fail(file, 0, "facet " + std::to_string(f) + " has no " + (is_rho ? "rho" : "E") +
+                          (entry_of[f] >= 0 ? " (in facets[" + std::to_string(entry_of[f]) + "])" : " (not listed)") +
+                          " and there is no default " + (is_rho ? "rho" : "E"));
+      const std::vector<double>& v = given ? *given : *fallback;
+      for (std::size_t c = 0; c < nc; ++c) (is_rho ? scene.rho : scene.emission)[c][f] = v[c];
+    }
+  }
+  scene.notes.push_back("facet data: " + file + ", " + std::to_string(nc) + " channel" + (nc > 1 ? "s" : "") + ", " +
+                        std::to_string(listed) + " of " + std::to_string(nf) + " facets listed");
+  return scene;
+}
+
+}  // namespace
+
+ChannelScene load_channel_scene(const std::string& path, const std::string& materials_path) {
+  const std::string ext = lower_extension(path);
+  if (ext == ".obj") {
+    if (!materials_path.empty())
+      fail(path, 0, "a materials file (" + materials_path + ") applies to OFF scenes only; an OBJ names its MTL "
+                    "files with mtllib");
+    return load_obj_scene(path);
+  }
+  if (ext == ".off") return load_off_scene(path, materials_path);
+  fail(path, 0, "unknown scene format " + in_quotes(ext.empty() ? "(no extension)" : ext) +
+                    ": expected .obj (with MTL) or .off (with a JSON sidecar)");
+}
+
+}  // namespace panelrad
