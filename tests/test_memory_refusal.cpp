@@ -132,4 +132,36 @@ TEST(MemoryRefusal, FastFarFieldFallsBackToRecomputing) {
   EXPECT_EQ(a.bytes() - b.bytes(), a.statistics().far_pairs * 6 * sizeof(double));
 }
 
+// The fast operator's memory is estimated from sampled coverings before setup: the estimate
+// matches what setup then holds (within 15%; the far pairs per row vary smoothly over the
+// surface), and a limit below it refuses with the estimate shown, before allocating.
+TEST(MemoryRefusal, FastOperatorEstimateMatchesAndRefuses) {
+  const Scene scene = constant_cube();
+  for (int level : {3, 4}) {
+    const Collocation col(scene, level);
+    for (double eta : {0.2, 0.5}) {
+      FastOptions o;
+      o.eta = eta;
+      o.degree = 4;
+      o.far_storage_limit = 1;  // coefficients recomputed: bytes() is what the estimate covers
+      const FastOperator::MemoryEstimate est = FastOperator::estimate_memory(col, eta, 4);
+      const FastOperator fast(col, o);
+      const double far = static_cast<double>(fast.statistics().far_pairs);
+      std::cout << "[memory] level " << level << " eta " << eta << ": estimated " << est.bytes << " B, "
+                << est.far_pairs << " far pairs; actual " << fast.bytes() << " B, " << far << " far pairs\n";
+      EXPECT_NEAR(static_cast<double>(est.far_pairs), far, 0.15 * far);
+      EXPECT_NEAR(static_cast<double>(est.bytes), static_cast<double>(fast.bytes()), 0.15 * static_cast<double>(fast.bytes()));
+      EXPECT_EQ(est.coefficient_bytes, est.far_pairs * 15 * sizeof(double));  // M = 4: 15 terms
+      o.memory_limit = est.bytes / 2;
+      try {
+        const FastOperator refused(col, o);
+        ADD_FAILURE() << "not refused at level " << level;
+      } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("needs about"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("use fewer levels"), std::string::npos) << e.what();
+      }
+    }
+  }
+}
+
 }  // namespace

@@ -26,6 +26,9 @@ struct FastOptions {
   /// Far-field coefficients are stored when they take at most this many bytes (0: automatic,
   /// half of the available memory); otherwise they are recomputed in every product.
   std::size_t far_storage_limit = 0;
+  /// Setup is refused (std::runtime_error with the estimate) before any large allocation when
+  /// its estimated peak memory exceeds this many bytes (0: the memory available).
+  std::size_t memory_limit = 0;
   /// Called when a setup stage starts (cluster geometry, near field, far field), with a line
   /// saying what it does, e.g. for progress on stderr. May be empty.
   std::function<void(const std::string&)> progress;
@@ -39,6 +42,9 @@ struct FastStatistics {
   std::size_t skipped_rows = 0;        ///< rows with rho(P_i) = 0, not computed
   bool far_stored = false;             ///< coefficients stored (true) or recomputed per product
   std::size_t bytes = 0;               ///< bytes held by the operator
+  std::size_t estimated_bytes = 0;     ///< estimate made before setup (sampled coverings), without
+                                       ///< far-field coefficients; peak setup memory is about twice
+                                       ///< the near/far lists on top of it
   double geometry_s = 0;   ///< setup: cluster frames and element moments
   double covering_s = 0;   ///< setup: minimal admissible coverings (42) and near-field integrals (43)
   double far_s = 0;        ///< setup: far-field Taylor coefficients (44)-(45), when stored
@@ -67,6 +73,17 @@ class FastOperator final : public RadiosityOperator {
   /// closed-form rows (near field and far field together), for v = 1 and an oscillating v.
   FastSelfCheck self_check(int samples = 32) const;
 
+  /// Bytes the operator will hold without far-field coefficients, and the far-field pairs, from
+  /// the coverings of up to 256 evenly spaced rows (cheap: no integrals). For refusing sizes that
+  /// will not fit before allocating.
+  struct MemoryEstimate {
+    std::size_t bytes = 0;         ///< held after setup, coefficients not stored
+    std::size_t list_bytes = 0;    ///< of which near/far lists (held twice during setup)
+    std::size_t far_pairs = 0;     ///< estimated (point, cluster) pairs in the far field
+    std::size_t coefficient_bytes = 0;  ///< far_pairs x terms x 8, if stored
+  };
+  static MemoryEstimate estimate_memory(const Collocation& collocation, double eta, int degree);
+
   /// Cluster ids of the far field and element ids of the near field of row i (for tests: the
   /// covering plus the skipped coplanar clusters must partition the surface). Cluster id =
   /// level_offset(l) + k.
@@ -89,7 +106,8 @@ class FastOperator final : public RadiosityOperator {
   std::vector<geometry::Index> level_offset_;     // first global id of each level
   std::vector<double> rho_;                       // rho(P_i)
   std::vector<Vec3> point_, normal_;              // P_i, n_P
-  std::vector<PlaneFrame> frame_;                 // per cluster: origin A(tau), axes of its plane
+  double unit_scale_ = 1;                         // far field in units of 2^k ~ diameter (exact scaling)
+  std::vector<PlaneFrame> frame_;                 // per cluster: origin A(tau) (scaled), axes of its plane
   std::vector<std::array<double, 2>> to_parent_;  // per non-root cluster: its A in parent's frame
   std::vector<double> element_moments_;           // per element: Int_Delta x^p y^q dS about A(Delta)
   // Near field (CSR over rows): element index and rho_i/pi Int G.

@@ -1,0 +1,220 @@
+// `panelrad solve`: user scenes (OBJ + MTL, OFF + JSON) end to end: exit status (0 solved, 1 invalid
+// scene or failed run, 2 usage error), messages naming the file and line or facet, progress on
+// stderr (none with --quiet), the summary with the energy balance, and whole output files.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+const std::string kScenes = std::string(PANELRAD_SOURCE_DIR) + "/examples/scenes/";
+const std::string kMeshes = std::string(PANELRAD_SOURCE_DIR) + "/examples/meshes/";
+
+struct CliRun {
+  int status = -1;
+  std::string output;  // what the redirection in `run` keeps
+};
+
+// `redirect`: "2>&1" (stdout and stderr), "2>/dev/null" (stdout), "2>&1 >/dev/null" (stderr).
+CliRun run(const std::string& args, const std::string& redirect = "2>&1") {
+  CliRun r;
+  const std::string cmd = std::string("\"") + PANELRAD_CLI + "\" " + args + " " + redirect;
+  FILE* pipe = ::popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf{};
+  while (const std::size_t n = std::fread(buf.data(), 1, buf.size(), pipe)) r.output.append(buf.data(), n);
+  const int st = ::pclose(pipe);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return r;
+}
+
+#define EXPECT_CONTAINS(haystack, needle) \
+  EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << "output:\n" << (haystack)
+
+class CliSolve : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("panelrad_cli_solve_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  void write(const std::string& name, const std::string& text) const { std::ofstream(dir_ / name) << text; }
+  std::size_t files() const {
+    return static_cast<std::size_t>(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()));
+  }
+  // The unit cube as an OBJ with one material per face (face order: x=0, x=1, y=0, y=1, z=0, z=1).
+  void write_cube_obj(const std::string& mtl_name, const std::vector<std::string>& materials) const {
+    std::ostringstream os;
+    os << "mtllib " << mtl_name << "\n"
+       << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n";
+    const char* faces[6] = {"1 5 8 4", "2 3 7 6", "1 2 6 5", "4 8 7 3", "1 4 3 2", "5 6 7 8"};
+    for (int f = 0; f < 6; ++f) os << "usemtl " << materials[static_cast<std::size_t>(f)] << "\nf " << faces[f] << "\n";
+    write("cube.obj", os.str());
+  }
+  fs::path dir_;
+};
+
+std::vector<std::vector<std::string>> read_csv(const std::string& file) {
+  std::vector<std::vector<std::string>> rows;
+  std::ifstream in(file);
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    for (std::string c; std::getline(ss, c, ',');) cells.push_back(c);
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+double energy_mismatch(const std::string& summary, const std::string& channel) {
+  std::istringstream in(summary);
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind(channel + " ", 0) == 0) {
+      std::istringstream cells(line);
+      std::string name;
+      double products, residual, emitted, absorbed, mismatch;
+      cells >> name >> products >> residual >> emitted >> absorbed >> mismatch;
+      return mismatch;
+    }
+  return -1;
+}
+
+TEST_F(CliSolve, OffJsonSceneWritesAllOutputs) {
+  const CliRun r = run("solve " + kScenes + "prism_lamp.off --levels 2 --out " + path("lamp"), "2>/dev/null");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_CONTAINS(r.output, "n = 320 (level 2)");
+  EXPECT_CONTAINS(r.output, "energy balance");
+  for (const char* ext : {".csv", ".ply", ".vtk", ".png"}) {
+    EXPECT_TRUE(fs::exists(path(std::string("lamp") + ext))) << ext;
+    EXPECT_CONTAINS(r.output, "wrote " + path(std::string("lamp") + ext));
+  }
+  EXPECT_EQ(files(), 4u);  // no temporary or probe files left behind
+  const auto rows = read_csv(path("lamp.csv"));
+  ASSERT_EQ(rows.size(), 321u);
+  EXPECT_EQ(rows[0], (std::vector<std::string>{"element", "facet", "x", "y", "z", "area", "rho", "E", "u"}));
+  // u = E + rho H >= E, and every element receives light from the emitting side (no occlusion).
+  for (std::size_t i = 1; i < rows.size(); ++i) EXPECT_GT(std::stod(rows[i][8]), std::stod(rows[i][7]));
+}
+
+TEST_F(CliSolve, ProgressOnStderrQuietSilencesIt) {
+  const std::string scene = kScenes + "prism_lamp.off --levels 1 --formats csv --out " + path("p");
+  const CliRun loud = run("solve " + scene, "2>&1 >/dev/null");
+  EXPECT_EQ(loud.status, 0) << loud.output;
+  EXPECT_CONTAINS(loud.output, "subdividing");
+  EXPECT_CONTAINS(loud.output, "product 1");
+  const CliRun quiet = run("solve --quiet " + scene, "2>&1 >/dev/null");
+  EXPECT_EQ(quiet.status, 0);
+  EXPECT_EQ(quiet.output, "");
+  EXPECT_TRUE(fs::exists(path("p.csv")));
+  EXPECT_FALSE(fs::exists(path("p.png")));
+}
+
+// Kd -> rho, Ke -> E per channel through usemtl: the red wall reflects red (paper (1) per channel).
+TEST_F(CliSolve, CornellBoxChannelsFollowTheMaterials) {
+  const CliRun r = run("solve " + kScenes + "cornell_box.obj --max-elements 600 --formats csv --out " + path("box"),
+                       "2>/dev/null");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_CONTAINS(r.output, "3 channels");
+  EXPECT_CONTAINS(r.output, "n = 576 (level 2)");
+  const auto rows = read_csv(path("box.csv"));
+  ASSERT_EQ(rows.size(), 577u);
+  ASSERT_EQ(rows[0].size(), 15u);
+  EXPECT_EQ(rows[0][6], "rho_R");
+  EXPECT_EQ(rows[0][14], "u_B");
+  // Facet 13 is the red wall (Kd 0.63 0.06 0.04), facet 11 the green one (Kd 0.14 0.45 0.09),
+  // facet 12 a white one (Kd 0.73 0.73 0.73). u = rho H on the walls (E = 0): the colour ratio of
+  // a wall over the white wall's is about its rho ratio (H differs little between the walls):
+  // 0.63 / 0.06 = 10.5 for red / green on the red wall, 0.45 / 0.14 = 3.2 for green / red.
+  std::map<int, std::array<double, 3>> sum;
+  for (std::size_t i = 1; i < rows.size(); ++i)
+    for (int c = 0; c < 3; ++c) sum[std::stoi(rows[i][1])][static_cast<std::size_t>(c)] += std::stod(rows[i][8 + 3 * static_cast<std::size_t>(c)]);
+  const double white_rg = sum[12][0] / sum[12][1];
+  EXPECT_GT(sum[13][0] / sum[13][1], 5 * white_rg);
+  EXPECT_LT(sum[13][0] / sum[13][1], 20 * white_rg);
+  EXPECT_GT(sum[11][1] / sum[11][0], 2 / white_rg);
+  EXPECT_LT(sum[11][1] / sum[11][0], 5 / white_rg);
+}
+
+// The energy mismatch is a discretization effect: it shrinks as n grows.
+TEST_F(CliSolve, EnergyMismatchShrinksWithLevels) {
+  double previous = 1;
+  for (int level = 1; level <= 3; ++level) {
+    const CliRun r = run("solve --quiet " + kScenes + "prism_lamp.off --formats csv --out " + path("e") +
+                         " --levels " + std::to_string(level));
+    ASSERT_EQ(r.status, 0) << r.output;
+    const double m = energy_mismatch(r.output, "value");
+    ASSERT_GE(m, 0) << r.output;
+    EXPECT_LT(m, previous) << "level " << level;
+    previous = m;
+  }
+  EXPECT_LT(previous, 1e-2);
+}
+
+TEST_F(CliSolve, InvalidScenesAreRefusedNamingFileAndPlace) {
+  // Non-convex (the L-shaped block) with a valid sidecar.
+  fs::copy_file(kMeshes + "l_block.off", path("l_block.off"));
+  write("l_block.json", R"({"default": {"rho": 0.5, "E": 1}})");
+  CliRun r = run("solve " + path("l_block.off") + " --out " + path("x"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_CONTAINS(r.output, "l_block.off");
+  EXPECT_CONTAINS(r.output, "convex");
+  // Open (a box without lid).
+  fs::copy_file(kMeshes + "open_box.off", path("open_box.off"));
+  write("open_box.json", R"({"default": {"rho": 0.5, "E": 1}})");
+  r = run("solve " + path("open_box.off") + " --out " + path("x"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_CONTAINS(r.output, "closed");
+  // rho >= 1, rho < 0 and NaN in the MTL: named with the MTL file and line.
+  const std::vector<std::string> mats = {"a", "a", "a", "a", "a", "bad"};
+  write_cube_obj("cube.mtl", mats);
+  for (const std::string kd : {"1.0 0.5 0.5", "0.5 -0.1 0.5", "nan 0.5 0.5"}) {
+    write("cube.mtl", "newmtl a\nKd 0.5 0.5 0.5\nKe 1 1 1\nnewmtl bad\nKd " + kd + "\n");
+    r = run("solve " + path("cube.obj") + " --out " + path("x"));
+    EXPECT_EQ(r.status, 1) << kd << "\n" << r.output;
+    EXPECT_CONTAINS(r.output, "cube.mtl:5");
+  }
+  // Missing MTL.
+  fs::remove(path("cube.mtl"));
+  r = run("solve " + path("cube.obj") + " --out " + path("x"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_CONTAINS(r.output, "cube.mtl");
+  // Unknown material: named with the OBJ line.
+  write("cube.mtl", "newmtl a\nKd 0.5 0.5 0.5\nKe 1 1 1\n");
+  r = run("solve " + path("cube.obj") + " --out " + path("x"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_CONTAINS(r.output, "bad");
+  EXPECT_CONTAINS(r.output, "cube.obj:20");
+  // Nothing was written for any of them.
+  for (const char* ext : {".csv", ".ply", ".vtk", ".png"}) EXPECT_FALSE(fs::exists(path(std::string("x") + ext)));
+}
+
+TEST_F(CliSolve, UnwritableOutputFailsBeforeSolving) {
+  const CliRun r = run("solve " + kScenes + "prism_lamp.off --levels 1 --out " + path("missing/dir/x"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_CONTAINS(r.output, "missing/dir/x");
+  EXPECT_EQ(r.output.find("subdividing"), std::string::npos) << r.output;
+}
+
+TEST_F(CliSolve, UsageErrors) {
+  EXPECT_EQ(run("solve").status, 2);
+  EXPECT_EQ(run("solve " + kScenes + "prism_lamp.off --levels 2 --max-elements 100").status, 2);
+  EXPECT_EQ(run("solve " + kScenes + "prism_lamp.off --formats csv,jpg").status, 2);
+  EXPECT_EQ(run("solve " + kScenes + "prism_lamp.off --eta 0.3").status, 2);  // needs --method fast
+  EXPECT_EQ(run("solve " + kScenes + "prism_lamp.off --levels -1").status, 2);
+  EXPECT_EQ(run("solve a.off b.off").status, 2);
+  EXPECT_EQ(run("solve --help").status, 0);
+}
+
+}  // namespace
