@@ -1,4 +1,6 @@
 // `panelrad check`: output and exit status (0 valid, 1 invalid or unreadable, 2 usage error).
+#include "cli_run.hpp"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -10,25 +12,10 @@ namespace {
 
 const std::string kMeshes = std::string(PANELRAD_SOURCE_DIR) + "/examples/meshes/";
 
-struct CliRun {
-  int status = -1;
-  std::string output;  // stdout and stderr together
-};
-
-CliRun run(const std::string& args) {
-  CliRun r;
-  const std::string cmd = std::string("\"") + PANELRAD_CLI + "\" " + args + " 2>&1";
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf{};
-  while (const std::size_t n = std::fread(buf.data(), 1, buf.size(), pipe)) r.output.append(buf.data(), n);
-  const int st = ::pclose(pipe);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
+using panelrad::testing::CliRun;
+CliRun run(const std::string& args, const std::string& redirect = "2>&1") {
+  return panelrad::testing::run_cli(args, redirect);
 }
-
-#define EXPECT_CONTAINS(haystack, needle) \
-  EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << "output:\n" << (haystack)
 
 }  // namespace
 

@@ -1,4 +1,6 @@
 // The `panelrad cube` command: table, CSV format, exit statuses, refusal of sizes that won't fit.
+#include "cli_run.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -13,19 +15,9 @@
 
 namespace {
 
-struct CliRun {
-  int status;
-  std::string output;
-};
-
-CliRun run(const std::string& args) {
-  const std::string cmd = std::string(PANELRAD_CLI) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  std::string out;
-  char buf[4096];
-  while (p && std::fgets(buf, sizeof buf, p)) out += buf;
-  const int st = p ? pclose(p) : -1;
-  return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
+using panelrad::testing::CliRun;
+CliRun run(const std::string& args, const std::string& redirect = "2>&1") {
+  return panelrad::testing::run_cli(args, redirect);
 }
 
 std::vector<std::string> lines_of(const std::string& path) {

@@ -1,6 +1,8 @@
 // `panelrad solve`: user scenes (OBJ + MTL, OFF + JSON) end to end: exit status (0 solved, 1 invalid
 // scene or failed run, 2 usage error), messages naming the file and line or facet, progress on
 // stderr (none with --quiet), the summary with the energy balance, and whole output files.
+#include "cli_run.hpp"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -19,26 +21,10 @@ namespace fs = std::filesystem;
 const std::string kScenes = std::string(PANELRAD_SOURCE_DIR) + "/examples/scenes/";
 const std::string kMeshes = std::string(PANELRAD_SOURCE_DIR) + "/examples/meshes/";
 
-struct CliRun {
-  int status = -1;
-  std::string output;  // what the redirection in `run` keeps
-};
-
-// `redirect`: "2>&1" (stdout and stderr), "2>/dev/null" (stdout), "2>&1 >/dev/null" (stderr).
+using panelrad::testing::CliRun;
 CliRun run(const std::string& args, const std::string& redirect = "2>&1") {
-  CliRun r;
-  const std::string cmd = std::string("\"") + PANELRAD_CLI + "\" " + args + " " + redirect;
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf{};
-  while (const std::size_t n = std::fread(buf.data(), 1, buf.size(), pipe)) r.output.append(buf.data(), n);
-  const int st = ::pclose(pipe);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
+  return panelrad::testing::run_cli(args, redirect);
 }
-
-#define EXPECT_CONTAINS(haystack, needle) \
-  EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << "output:\n" << (haystack)
 
 class CliSolve : public ::testing::Test {
  protected:

@@ -377,6 +377,20 @@ void write_radiosity_csv(const std::string& path, const ElementField& field) {
   write_file_atomically(path, out);
 }
 
+namespace {
+// One line "x y z" per shared vertex, 17 significant digits (round-trip).
+void append_points(std::string& out, const std::vector<Vec3>& points) {
+  for (const Vec3& p : points) {
+    append_g17(out, p.x());
+    out += ' ';
+    append_g17(out, p.y());
+    out += ' ';
+    append_g17(out, p.z());
+    out += '\n';
+  }
+}
+}  // namespace
+
 void write_radiosity_ply(const std::string& path, const ElementField& field) {
   validate("write_radiosity_ply", field);
   const SharedVertices sv = share_vertices(field);
@@ -390,14 +404,7 @@ void write_radiosity_ply(const std::string& path, const ElementField& field) {
   for (std::size_t c = 0; c < field.channels.size(); ++c)
     out += "property float u" + suffix(field, c) + "\n";
   out += "end_header\n";
-  for (const Vec3& p : sv.points) {
-    append_g17(out, p.x());
-    out += ' ';
-    append_g17(out, p.y());
-    out += ' ';
-    append_g17(out, p.z());
-    out += '\n';
-  }
+  append_points(out, sv.points);
   for (std::size_t i = 0; i < field.size(); ++i) {
     out += "3 " + std::to_string(sv.corner[i][0]) + ' ' + std::to_string(sv.corner[i][1]) + ' ' +
            std::to_string(sv.corner[i][2]);
@@ -417,14 +424,7 @@ void write_radiosity_vtk(const std::string& path, const ElementField& field) {
   const std::size_t n = field.size();
   std::string out = "# vtk DataFile Version 3.0\npanelrad radiosity\nASCII\nDATASET POLYDATA\n";
   out += "POINTS " + std::to_string(sv.points.size()) + " double\n";
-  for (const Vec3& p : sv.points) {
-    append_g17(out, p.x());
-    out += ' ';
-    append_g17(out, p.y());
-    out += ' ';
-    append_g17(out, p.z());
-    out += '\n';
-  }
+  append_points(out, sv.points);
   out += "POLYGONS " + std::to_string(n) + ' ' + std::to_string(4 * n) + '\n';
   for (std::size_t i = 0; i < n; ++i)
     out += "3 " + std::to_string(sv.corner[i][0]) + ' ' + std::to_string(sv.corner[i][1]) + ' ' +
