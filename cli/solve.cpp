@@ -127,7 +127,12 @@ int run_solve(int argc, char** argv) {
   if (wants("csv")) write_radiosity_csv(prefix + ".csv", s.field), written.push_back(prefix + ".csv");
   if (wants("ply")) write_radiosity_ply(prefix + ".ply", s.field), written.push_back(prefix + ".ply");
   if (wants("vtk")) write_radiosity_vtk(prefix + ".vtk", s.field), written.push_back(prefix + ".vtk");
-  if (wants("png")) write_radiosity_png(prefix + ".png", s.field), written.push_back(prefix + ".png");
+  if (wants("png")) {
+    RenderOptions view;
+    view.view_direction = brightest_view_direction(s.field);  // look towards the light
+    write_radiosity_png(prefix + ".png", s.field, view);
+    written.push_back(prefix + ".png");
+  }
 
   // Summary.
   std::printf("scene %s: %d facets, %zu channel%s\n", scene_path.c_str(), static_cast<int>(scene.mesh.num_facets),

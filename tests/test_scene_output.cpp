@@ -374,6 +374,20 @@ TEST_F(SceneOutput, PngScalarSceneHasColourBar) {
   for (int x = 192; x < 200; ++x) EXPECT_EQ(r.at(x, 75), kBackground);  // inside the 5% margin
 }
 
+// The viewpoint that shows the light: a lit facet (inner normal n) is visible when n . d > 0, so
+// the chosen direction must look at it; each of the six facets lit in turn.
+TEST_F(SceneOutput, BrightestViewLooksAtTheLight) {
+  for (int lit = 0; lit < 6; ++lit) {
+    const ElementField f = cube(
+        2, {"u"}, [lit](int facet, std::size_t) { return facet == lit ? 10.0 : 1.0; },
+        [lit](int facet, std::size_t) { return facet == lit ? 9.0 : 0.0; });
+    const Vec3 d = brightest_view_direction(f);
+    Vec3 inner = Vec3::Zero();
+    inner[lit / 2] = lit % 2 == 0 ? 1.0 : -1.0;  // facet x=0 has inner normal +x, and so on
+    EXPECT_GT(inner.dot(d), 0) << "lit facet " << lit << ", view " << d.transpose();
+  }
+}
+
 TEST_F(SceneOutput, InvalidFieldsThrowAndLeaveNoFile) {
   std::vector<ElementField> bad;
   ElementField f = rgb_cube();

@@ -457,6 +457,29 @@ void write_radiosity_vtk(const std::string& path, const ElementField& field) {
   write_file_atomically(path, out);
 }
 
+Vec3 brightest_view_direction(const ElementField& field) {
+  validate("brightest_view_direction", field);
+  Vec3 best(-1.0, -1.7, 1.2);
+  double best_light = -1;
+  for (int k = 0; k < 8; ++k) {
+    const Vec3 d((k & 1) ? 1.0 : -1.0, (k & 2) ? 1.7 : -1.7, (k & 4) ? -1.2 : 1.2);
+    const Vec3 unit = d.normalized();
+    double light = 0;
+    for (std::size_t i = 0; i < field.size(); ++i) {
+      const double facing = field.inner_normal[i].dot(unit);
+      if (facing <= 0) continue;  // not visible in the cut-away view
+      double u = 0;
+      for (const Eigen::VectorXd& r : field.radiosity) u += r[static_cast<Eigen::Index>(i)];
+      light += field.area[i] * facing * u;
+    }
+    if (light > best_light * (1 + 1e-12)) {
+      best_light = light;
+      best = d;
+    }
+  }
+  return best;
+}
+
 std::vector<std::array<unsigned char, 3>> element_colours(const ElementField& field) {
   validate("element_colours", field);
   return colours_of_valid(field);

@@ -49,6 +49,12 @@ struct RenderOptions {
 /// set maps its first channel through a perceptual colour map between its min and max.
 std::vector<std::array<unsigned char, 3>> element_colours(const ElementField& field);
 
+/// A viewpoint that shows the light: among the eight directions (+-1, +-1.7, +-1.2), the one whose
+/// visible walls (inner side towards the viewer) carry the most projected light,
+/// sum area (n . d) sum_c u_c; ties go to the first in a fixed order, so the choice is
+/// deterministic. For a scene lit from its ceiling this looks up into the light.
+geometry::Vec3 brightest_view_direction(const ElementField& field);
+
 /// PNG picture of the inside of the (convex, closed) scene: a cut-away view from outside along
 /// view_direction showing the faces whose inner side looks at the viewer (the far walls), each
 /// element flat-coloured by element_colours(), with a colour bar for scalar scenes.
