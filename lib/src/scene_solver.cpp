@@ -7,7 +7,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -80,6 +82,23 @@ SceneSolution solve_channel_scene(const ChannelScene& scene, const SceneSolveOpt
   out.level = options.levels >= 0 ? options.levels : level_for_max_elements(n0, options.max_elements);
   if (out.level > 15) throw std::invalid_argument("levels: " + std::to_string(out.level) + " is more than 15");
 
+  // The method first, so that a size that cannot fit is refused before any work.
+  OperatorOptions op;
+  if (options.method == "auto") {
+    op = choose_parameters(problem_size(scene.mesh, out.level));
+  } else if (options.method == "dense" || options.method == "fast") {
+    op = options.manual;
+    op.method = options.method;
+  } else {
+    throw std::invalid_argument("method '" + options.method + "' is not auto, dense or fast");
+  }
+  if (op.method == "dense") {
+    const std::int64_t n_planned = static_cast<std::int64_t>(n0) << (2 * out.level);
+    if (n_planned > std::numeric_limits<Index>::max())
+      throw std::invalid_argument("n = " + std::to_string(n_planned) + " elements is too large for the dense method");
+    DenseOperator::check_fits(static_cast<Index>(n_planned));
+  }
+
   // 1. Geometry: subdivision and collocation points (22); rho and E per channel by facet.
   Stopwatch clock;
   say("subdividing " + std::to_string(n0) + " triangles " + std::to_string(out.level) + " times: n = " +
@@ -94,16 +113,6 @@ SceneSolution solve_channel_scene(const ChannelScene& scene, const SceneSolveOpt
 
   // 2. One operator for every channel: H (rho replaced by 1), so K_c = diag(rho_c) H.
   clock.restart();
-  OperatorOptions op;
-  if (options.method == "auto") {
-    op = choose_parameters(problem_size(scene.mesh, out.level));
-  } else if (options.method == "dense" || options.method == "fast") {
-    op = options.manual;
-    op.method = options.method;
-  } else {
-    throw std::invalid_argument("method '" + options.method + "' is not auto, dense or fast");
-  }
-  if (op.method == "dense") DenseOperator::check_fits(n);
   op.progress = options.progress;
   const Collocation unit = base.with_row_weights(Eigen::VectorXd::Ones(n));
   std::unique_ptr<RadiosityOperator> H = make_operator(unit, op);
@@ -117,12 +126,13 @@ SceneSolution solve_channel_scene(const ChannelScene& scene, const SceneSolveOpt
       say(fmt("self-check %.2e above %.2e: tightening", out.self_check_error, out.self_check_threshold));
       op = stricter;
       ++out.tightened;
+      H.reset();  // free the looser operator before building the stricter one
       H = make_operator(unit, op);
       out.self_check_error = dynamic_cast<const FastOperator&>(*H).self_check().relative_error;
     }
     if (!(out.self_check_error <= out.self_check_threshold))
-      out.warnings.push_back(fmt("the fast product's measured error %.2e is above %.2e (1 relative); the answer "
-                                 "may be less accurate than the discretization",
+      out.warnings.push_back(fmt("the fast product's measured relative error %.2e is above the accepted %.2e "
+                                 "(nothing stricter to try); the answer may be less accurate than the discretization",
                                  out.self_check_error, out.self_check_threshold));
   }
   out.method = describe_parameters(op);
