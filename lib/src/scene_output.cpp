@@ -202,11 +202,17 @@ std::vector<Rgb> colours_of_valid(const ElementField& f) {
       }
   } else {
     // Other channel sets: the first channel, linear from its minimum to its maximum over the
-    // elements onto the colour map; a constant field gets the map's middle colour.
+    // elements that emit nothing (so that the reflected light, not the lamp, fills the map; the
+    // emitters are clamped to its top), over all elements when that range is empty; a constant
+    // field gets the map's middle colour.
     const Eigen::VectorXd& u = f.radiosity[0];
-    const double lo = u.minCoeff(), hi = u.maxCoeff();
+    const double lo = u.minCoeff();
+    double hi = -std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < n; ++i)
-      out[i] = colour_map(hi > lo ? (value(u, i) - lo) / (hi - lo) : 0.5);
+      if (value(f.emission[0], i) == 0.0) hi = std::max(hi, value(u, i));
+    if (!(hi > lo)) hi = u.maxCoeff();
+    for (std::size_t i = 0; i < n; ++i)
+      out[i] = colour_map(hi > lo ? std::clamp((value(u, i) - lo) / (hi - lo), 0.0, 1.0) : 0.5);
   }
   return out;
 }

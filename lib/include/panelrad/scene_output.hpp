@@ -46,7 +46,8 @@ struct RenderOptions {
 
 /// Colour of each element as shown in the picture and the PLY: RGB scenes (3 channels named R, G,
 /// B) map radiosity to colour with one exposure for all channels and gamma 2.2; any other channel
-/// set maps its first channel through a perceptual colour map between its min and max.
+/// set maps its first channel through a perceptual colour map between its minimum and its maximum
+/// over the non-emitting elements (emitters clamped to the top).
 std::vector<std::array<unsigned char, 3>> element_colours(const ElementField& field);
 
 /// A viewpoint that shows the light: among the eight directions (+-1, +-1.7, +-1.2), the one whose
