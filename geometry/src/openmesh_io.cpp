@@ -6,8 +6,10 @@
 
 // g++ 12 -O3 reports -Wmaybe-uninitialized inside OpenMesh's property containers (a false
 // positive in its headers, instantiated here); the rest of the project keeps the warning.
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 
@@ -52,4 +54,6 @@ TriangleMesh read_mesh_with_openmesh(const std::string& path) {
 
 }  // namespace panelrad::geometry
 
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic pop
+#endif
