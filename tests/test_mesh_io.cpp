@@ -228,6 +228,31 @@ TEST(MeshIo, ReadMeshByExtensionAndFileErrors) {
   std::filesystem::remove_all(dir);
 }
 
+// The OBJ reader records the material statements it skips for geometry: mtllib files and, per
+// face, the usemtl in force, with the faces counted exactly as the mesh's facets (continued and
+// commented-out lines included).
+TEST(MeshIo, ObjMaterialStatementsPerFace) {
+  const auto dir = std::filesystem::temp_directory_path() / ("panelrad_mesh_io_mtl_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "t.obj").string();
+  std::ofstream(path) << "mtllib a.mtl b.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                         "f 1 2 3  # before any usemtl\nusemtl red paint\nf 1 2 \\\n 4\n# f 1 3 4\n"
+                         "usemtl white\nf 1 4 3\nf 2 3 4\nmtllib c.mtl\n";
+  pg::ObjMaterialUse use;
+  const pg::TriangleMesh m = pg::read_obj_with_materials(path, use);
+  ASSERT_EQ(m.num_facets, 4);
+  EXPECT_EQ(use.face_material, (std::vector<std::string>{"", "red paint", "white", "white"}));
+  EXPECT_EQ(use.face_line, (std::vector<long>{6, 8, 12, 13}));
+  EXPECT_EQ(use.usemtl_line, (std::vector<long>{0, 7, 11, 11}));
+  ASSERT_EQ(use.libraries.size(), 3u);
+  EXPECT_EQ(use.libraries[1].file, "b.mtl");
+  EXPECT_EQ(use.libraries[2].line, 14);
+  std::ofstream(path) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl\nf 1 2 3\n";
+  EXPECT_CONTAINS(error_of([&] { pg::read_obj_with_materials(path, use); }), "t.obj:4: usemtl without a material name");
+  EXPECT_EQ(pg::read_mesh(path).num_facets, 1);  // geometry alone ignores material statements
+  std::filesystem::remove_all(dir);
+}
+
 TEST(MeshIo, ShippedMeshesAllRead) {
   for (const char* name : {"cube.off", "hexagonal_prism.off", "triangular_prism.obj", "dodecahedron.off",
                            "l_block.off", "open_box.off"}) {

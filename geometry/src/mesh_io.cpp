@@ -327,7 +327,18 @@ TriangleMesh parse_off(const std::string& text, const std::string& name, std::ve
   return build_mesh(raw, name, notes);
 }
 
-TriangleMesh parse_obj(const std::string& text, const std::string& name, std::vector<std::string>* notes) {
+/// Tokens from `first` on, joined by single spaces (material and library names).
+std::string join_from(const std::vector<std::string_view>& tokens, std::size_t first) {
+  std::string s;
+  for (std::size_t t = first; t < tokens.size(); ++t) {
+    if (!s.empty()) s += ' ';
+    s += tokens[t];
+  }
+  return s;
+}
+
+TriangleMesh parse_obj(const std::string& text, const std::string& name, std::vector<std::string>* notes,
+                       ObjMaterialUse* materials = nullptr) {
   if (text.empty()) fail(name, 0, "empty file");
   std::string storage;
   const std::vector<Line> lines = split_lines(text, name, true, storage);
@@ -337,8 +348,18 @@ TriangleMesh parse_obj(const std::string& text, const std::string& name, std::ve
   std::vector<long long> pending;  // 1-based or resolved indices, checked against the final count
   std::vector<long> pending_lines;
   std::vector<Index> face;
+  std::string usemtl;  // the material in force (materials only)
+  long usemtl_line = 0;
   for (const Line& l : lines) {
     const std::string_view key = l.tokens[0];
+    if (materials && key == "mtllib") {
+      if (l.tokens.size() < 2) fail(name, l.number, "mtllib without a file name");
+      for (std::size_t t = 1; t < l.tokens.size(); ++t) materials->libraries.push_back({std::string(l.tokens[t]), l.number});
+    } else if (materials && key == "usemtl") {
+      if (l.tokens.size() < 2) fail(name, l.number, "usemtl without a material name");
+      usemtl = join_from(l.tokens, 1);
+      usemtl_line = l.number;
+    }
     if (key == "v") {
       const std::string what = "vertex " + std::to_string(raw.vertices.size() + 1);
       const std::size_t n = l.tokens.size() - 1;
@@ -390,6 +411,11 @@ TriangleMesh parse_obj(const std::string& text, const std::string& name, std::ve
         pending_lines.push_back(l.number);
       }
       add_face(raw, face, l.number);
+      if (materials) {
+        materials->face_material.push_back(usemtl);
+        materials->face_line.push_back(l.number);
+        materials->usemtl_line.push_back(usemtl_line);
+      }
     } else if (key == "vt" || key == "vn" || key == "vp" || key == "l" || key == "p" || key == "o" ||
                key == "g" || key == "s" || key == "usemtl" || key == "mtllib") {
       continue;  // texture coordinates, normals, lines, points, grouping and materials: not geometry here
@@ -423,21 +449,43 @@ TriangleMesh read_obj(std::istream& in, const std::string& name, std::vector<std
   return parse_obj(read_all(in, name), name, notes);
 }
 
-TriangleMesh read_mesh(const std::string& path, std::vector<std::string>* notes) {
+namespace {
+std::string lower_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+/// The whole text of an .off or .obj file (by extension, case-insensitive).
+std::string read_mesh_file(const std::string& path) {
   namespace fs = std::filesystem;
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
   if (ec || !fs::exists(status)) fail(path, 0, "cannot open: no such file");
   if (fs::is_directory(status)) fail(path, 0, "cannot read: is a directory");
-  std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string ext = lower_extension(path);
   if (ext != ".off" && ext != ".obj")
     fail(path, 0, "unknown mesh format " + show(ext.empty() ? std::string("(no extension)") : ext) +
                       ": expected .off or .obj");
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(path, 0, "cannot open for reading");
-  const std::string text = read_all(in, path);
-  return ext == ".off" ? parse_off(text, path, notes) : parse_obj(text, path, notes);
+  return read_all(in, path);
+}
+
+bool is_off(const std::string& path) { return lower_extension(path) == ".off"; }
+}  // namespace
+
+TriangleMesh read_mesh(const std::string& path, std::vector<std::string>* notes) {
+  const std::string text = read_mesh_file(path);
+  return is_off(path) ? parse_off(text, path, notes) : parse_obj(text, path, notes);
+}
+
+TriangleMesh read_obj_with_materials(const std::string& path, ObjMaterialUse& materials,
+                                     std::vector<std::string>* notes) {
+  const std::string text = read_mesh_file(path);
+  if (is_off(path)) fail(path, 0, "an OFF file has no materials: expected an .obj file");
+  materials = ObjMaterialUse{};
+  return parse_obj(text, path, notes, &materials);
 }
 
 }  // namespace panelrad::geometry

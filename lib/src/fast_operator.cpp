@@ -65,7 +65,6 @@ FastOperator::FastOperator(const Collocation& collocation, const FastOptions& op
   n_ = tree.num_elements();
   {  // refuse what will not fit, before any large allocation (issue 5.6)
     const MemoryEstimate est = estimate_memory(collocation, options_.eta, options_.degree);
-    stats_.estimated_bytes = est.bytes;
     const std::size_t peak = est.bytes + est.list_bytes;
     const std::size_t limit = options_.memory_limit ? options_.memory_limit : available_memory_bytes();
     if (peak > limit)

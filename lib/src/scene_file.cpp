@@ -66,15 +66,11 @@ struct Line {
   std::vector<std::string> tokens;
 };
 
-/// Content lines as geometry::read_obj sees them: '#' starts a comment, blank lines are skipped
-/// and, with `continuation`, a trailing backslash (after the comment is removed) joins a line
-/// with the next; a joined line has the number of its first line.
-std::vector<Line> split_lines(const std::string& text, bool continuation) {
+/// Content lines of an MTL file: '#' starts a comment, blank lines are skipped.
+std::vector<Line> split_lines(const std::string& text) {
   std::vector<Line> lines;
   long number = 0;
   std::size_t pos = 0;
-  Line pending;
-  bool has_pending = false;
   while (pos < text.size()) {
     std::size_t end = text.find('\n', pos);
     if (end == std::string::npos) end = text.size();
@@ -83,27 +79,16 @@ std::vector<Line> split_lines(const std::string& text, bool continuation) {
     pos = end + 1;
     const std::size_t hash = line.find('#');
     if (hash != std::string_view::npos) line = line.substr(0, hash);
-    bool continues = false;
-    if (continuation) {
-      const std::size_t last = line.find_last_not_of(" \t\r\f\v");
-      if (last != std::string_view::npos && line[last] == '\\') {
-        continues = true;
-        line = line.substr(0, last);
-      }
-    }
-    if (!has_pending) pending = Line{number, {}};
-    std::size_t i = 0;
-    while (i < line.size()) {
+    Line l{number, {}};
+    for (std::size_t i = 0; i < line.size();) {
       while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
       std::size_t j = i;
       while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
-      if (j > i) pending.tokens.emplace_back(line.substr(i, j - i));
+      if (j > i) l.tokens.emplace_back(line.substr(i, j - i));
       i = j;
     }
-    has_pending = continues;
-    if (!continues && !pending.tokens.empty()) lines.push_back(std::move(pending));
+    if (!l.tokens.empty()) lines.push_back(std::move(l));
   }
-  if (has_pending && !pending.tokens.empty()) lines.push_back(std::move(pending));
   return lines;
 }
 
@@ -122,11 +107,13 @@ std::string value_problem(bool is_rho, double v) {
   return "";
 }
 
-/// Reads and validates the mesh; notes get the reader's and the validator's notes.
-geometry::TriangleMesh load_mesh(const std::string& path, std::vector<std::string>& notes) {
+/// Reads and validates the mesh; notes get the reader's and the validator's notes. For an OBJ,
+/// `materials` (when given) gets its mtllib and per-face usemtl statements.
+geometry::TriangleMesh load_mesh(const std::string& path, std::vector<std::string>& notes,
+                                 geometry::ObjMaterialUse* materials = nullptr) {
   geometry::TriangleMesh mesh;
   try {
-    mesh = geometry::read_mesh(path, &notes);
+    mesh = materials ? geometry::read_obj_with_materials(path, *materials, &notes) : geometry::read_mesh(path, &notes);
   } catch (const geometry::MeshError& e) {
     throw SceneFileError(e.what());
   }
@@ -174,7 +161,7 @@ void parse_mtl(const std::string& path, const std::string& role, std::map<std::s
   const std::string text = read_text(path, role);
   Material* current = nullptr;
   std::string current_name;
-  for (const Line& l : split_lines(text, false)) {
+  for (const Line& l : split_lines(text)) {
     const std::string& key = l.tokens[0];
     if (key == "newmtl") {
       if (l.tokens.size() < 2) fail(path, l.number, "newmtl without a material name");
@@ -202,42 +189,25 @@ void parse_mtl(const std::string& path, const std::string& role, std::map<std::s
 
 ChannelScene load_obj_scene(const std::string& path) {
   ChannelScene scene;
-  scene.mesh = load_mesh(path, scene.notes);
+  geometry::ObjMaterialUse use;  // mtllib and per-face usemtl, as the reader counted the faces
+  scene.mesh = load_mesh(path, scene.notes, &use);
   const auto nf = static_cast<std::size_t>(scene.mesh.num_facets);
-
-  // The material of every face, counting 'f' statements exactly as geometry::read_obj does.
-  const std::vector<Line> lines = split_lines(read_text(path, "OBJ file"), true);
-  std::vector<std::pair<std::string, long>> libraries;  // MTL path, mtllib line
-  std::vector<std::string> face_material;
-  std::vector<long> face_line, face_usemtl_line;
-  std::string current;
-  long current_line = 0;
-  for (const Line& l : lines) {
-    const std::string& key = l.tokens[0];
-    if (key == "mtllib") {
-      if (l.tokens.size() < 2) fail(path, l.number, "mtllib without a file name");
-      for (std::size_t t = 1; t < l.tokens.size(); ++t) {
-        const std::string lib = (fs::path(path).parent_path() / l.tokens[t]).string();
-        const bool seen = std::any_of(libraries.begin(), libraries.end(), [&](const auto& x) { return x.first == lib; });
-        if (!seen) libraries.emplace_back(lib, l.number);
-      }
-    } else if (key == "usemtl") {
-      if (l.tokens.size() < 2) fail(path, l.number, "usemtl without a material name");
-      current = join_from(l.tokens, 1);
-      current_line = l.number;
-    } else if (key == "f") {
-      if (current.empty())
-        fail(path, l.number, "facet " + std::to_string(face_material.size()) +
-                                 " comes before any usemtl (every face needs a material)");
-      face_material.push_back(current);
-      face_line.push_back(l.number);
-      face_usemtl_line.push_back(current_line);
-    }
-  }
-  if (face_material.size() != nf)
-    fail(path, 0, "internal error: " + std::to_string(face_material.size()) + " 'f' statements but the mesh has " +
+  if (use.face_material.size() != nf)
+    fail(path, 0, "internal error: " + std::to_string(use.face_material.size()) + " faces but the mesh has " +
                       std::to_string(nf) + " facets");
+  for (std::size_t f = 0; f < nf; ++f)
+    if (use.face_material[f].empty())
+      fail(path, use.face_line[f], "facet " + std::to_string(f) + " comes before any usemtl (every face needs a material)");
+  std::vector<std::pair<std::string, long>> libraries;  // MTL path, mtllib line; each file once
+  for (const geometry::ObjMaterialUse::Library& l : use.libraries) {
+    const std::string lib = (fs::path(path).parent_path() / l.file).string();
+    const bool seen = std::any_of(libraries.begin(), libraries.end(), [&](const auto& x) { return x.first == lib; });
+    if (!seen) libraries.emplace_back(lib, l.line);
+  }
   if (libraries.empty()) fail(path, 0, "no mtllib statement: the scene's materials (Kd = rho, Ke = E) are needed");
+  const std::vector<std::string>& face_material = use.face_material;
+  const std::vector<long>& face_line = use.face_line;
+  const std::vector<long>& face_usemtl_line = use.usemtl_line;
 
   std::map<std::string, Material> materials;
   std::size_t defined = 0;

@@ -146,8 +146,33 @@ SceneSolution solve_channel_scene(const ChannelScene& scene, const SceneSolveOpt
   SolverOptions solver;
   solver.kind = options.solver;
   solver.tolerance = options.tolerance > 0 ? options.tolerance : discretization_tolerance(out.mesh_size, out.diameter);
-  std::vector<double> area(static_cast<std::size_t>(n));
-  for (Index i = 0; i < n; ++i) area[static_cast<std::size_t>(i)] = base.tree().elements()[static_cast<std::size_t>(i)].area;
+  // The elements and rho, E per channel at every element (by facet): what the solves and the
+  // output writers need.
+  ElementField& field = out.field;
+  field.channels = scene.channels;
+  field.triangle.resize(static_cast<std::size_t>(n));
+  field.inner_normal.resize(static_cast<std::size_t>(n));
+  field.centroid.resize(static_cast<std::size_t>(n));
+  field.area.resize(static_cast<std::size_t>(n));
+  field.facet.resize(static_cast<std::size_t>(n));
+  for (Index i = 0; i < n; ++i) {
+    const geometry::Cluster& e = base.tree().elements()[static_cast<std::size_t>(i)];
+    field.triangle[static_cast<std::size_t>(i)] = e.vertex;
+    field.inner_normal[static_cast<std::size_t>(i)] = e.normal;
+    field.centroid[static_cast<std::size_t>(i)] = base.collocation_point(i);
+    field.area[static_cast<std::size_t>(i)] = e.area;
+    field.facet[static_cast<std::size_t>(i)] = e.facet;
+  }
+  for (std::size_t c = 0; c < C; ++c) {
+    Eigen::VectorXd rho(n), E(n);
+    for (Index i = 0; i < n; ++i) {
+      const std::size_t f = static_cast<std::size_t>(field.facet[static_cast<std::size_t>(i)]);
+      rho[i] = scene.rho[c][f];
+      E[i] = scene.emission[c][f];
+    }
+    field.rho.push_back(std::move(rho));
+    field.emission.push_back(std::move(E));
+  }
   // Expected size of the energy mismatch: a discretization effect (point-to-element form factors
   // are not reciprocal), measured at most 0.35 h/diam on the cube, prisms and the tetrahedron at
   // levels 1-5 (tests/test_scene_solver.cpp): 0.5 h/diam; a warning above 4 times that.
@@ -155,12 +180,8 @@ SceneSolution solve_channel_scene(const ChannelScene& scene, const SceneSolveOpt
   for (std::size_t c = 0; c < C; ++c) {
     ChannelSolution ch;
     ch.name = scene.channels[c];
-    Eigen::VectorXd rho(n), E(n);
-    for (Index i = 0; i < n; ++i) {
-      const std::size_t f = static_cast<std::size_t>(base.facet(i));
-      rho[i] = scene.rho[c][f];
-      E[i] = scene.emission[c][f];
-    }
+    const Eigen::VectorXd& rho = field.rho[c];
+    const Eigen::VectorXd& E = field.emission[c];
     const int same = identical_earlier_channel(scene, c);
     if (same >= 0) {
       const ChannelSolution& d = out.channels[static_cast<std::size_t>(same)];
@@ -193,7 +214,7 @@ SceneSolution solve_channel_scene(const ChannelScene& scene, const SceneSolveOpt
     ch.error_estimate = r.error_estimate;
     H->apply(ch.radiosity, ch.irradiance);  // the light arriving: the product without rho
     for (Index i = 0; i < n; ++i) {
-      const double a = area[static_cast<std::size_t>(i)];
+      const double a = field.area[static_cast<std::size_t>(i)];
       ch.emitted += a * E[i];
       ch.absorbed += a * (1 - rho[i]) * ch.irradiance[i];
     }
@@ -208,32 +229,7 @@ SceneSolution solve_channel_scene(const ChannelScene& scene, const SceneSolveOpt
   }
   out.solve_s = clock.seconds();
 
-  // 4. The field for the writers.
-  ElementField& field = out.field;
-  field.channels = scene.channels;
-  field.triangle.resize(static_cast<std::size_t>(n));
-  field.inner_normal.resize(static_cast<std::size_t>(n));
-  field.centroid.resize(static_cast<std::size_t>(n));
-  field.area = area;
-  field.facet.resize(static_cast<std::size_t>(n));
-  for (Index i = 0; i < n; ++i) {
-    const geometry::Cluster& e = base.tree().elements()[static_cast<std::size_t>(i)];
-    field.triangle[static_cast<std::size_t>(i)] = e.vertex;
-    field.inner_normal[static_cast<std::size_t>(i)] = e.normal;
-    field.centroid[static_cast<std::size_t>(i)] = base.collocation_point(i);
-    field.facet[static_cast<std::size_t>(i)] = e.facet;
-  }
-  for (std::size_t c = 0; c < C; ++c) {
-    Eigen::VectorXd rho(n), E(n);
-    for (Index i = 0; i < n; ++i) {
-      const std::size_t f = static_cast<std::size_t>(field.facet[static_cast<std::size_t>(i)]);
-      rho[i] = scene.rho[c][f];
-      E[i] = scene.emission[c][f];
-    }
-    field.rho.push_back(std::move(rho));
-    field.emission.push_back(std::move(E));
-    field.radiosity.push_back(out.channels[c].radiosity);
-  }
+  for (const ChannelSolution& ch : out.channels) field.radiosity.push_back(ch.radiosity);
   out.peak_rss_mb = peak_rss_mb();
   out.total_s = total.seconds();
   return out;

@@ -42,9 +42,6 @@ struct FastStatistics {
   std::size_t skipped_rows = 0;        ///< rows with rho(P_i) = 0, not computed
   bool far_stored = false;             ///< coefficients stored (true) or recomputed per product
   std::size_t bytes = 0;               ///< bytes held by the operator
-  std::size_t estimated_bytes = 0;     ///< estimate made before setup (sampled coverings), without
-                                       ///< far-field coefficients; peak setup memory is about twice
-                                       ///< the near/far lists on top of it
   double geometry_s = 0;   ///< setup: cluster frames and element moments
   double covering_s = 0;   ///< setup: minimal admissible coverings (42) and near-field integrals (43)
   double far_s = 0;        ///< setup: far-field Taylor coefficients (44)-(45), when stored

@@ -22,7 +22,24 @@ namespace panelrad::geometry {
 /// truncated file, garbage, a face index out of range, a face with fewer than 3 vertices, a
 /// non-finite coordinate. Never returns a partial mesh.
 /// Notes (merged duplicate vertices, dropped unused vertices) are appended to `notes` when given.
+/// What an OBJ file says about materials (for scene files, which give rho and E per material):
+/// its `mtllib` statements and, per input face (= facet), the `usemtl` name in force. Geometry
+/// ignores them; the reader records them so that faces are counted in one place only.
+struct ObjMaterialUse {
+  struct Library {
+    std::string file;  ///< as written in the OBJ (relative to its folder)
+    long line = 0;
+  };
+  std::vector<Library> libraries;          ///< every `mtllib` file name, in order
+  std::vector<std::string> face_material;  ///< per face: the last `usemtl` name before it, "" if none
+  std::vector<long> face_line;             ///< per face: its line
+  std::vector<long> usemtl_line;           ///< per face: the line of that `usemtl` (0 if none)
+};
+
 TriangleMesh read_mesh(const std::string& path, std::vector<std::string>* notes = nullptr);
+/// read_mesh of an OBJ file that also returns its material statements in `materials`.
+TriangleMesh read_obj_with_materials(const std::string& path, ObjMaterialUse& materials,
+                                     std::vector<std::string>* notes = nullptr);
 
 /// The same file read by OpenMesh's readers (OpenMesh::IO, double precision), fan-triangulated
 /// like read_mesh but without merging vertices: an independent second reader, to cross-check
