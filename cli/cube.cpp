@@ -78,15 +78,21 @@ int run_cube(int argc, char** argv) {
       throw UsageError("--accuracy auto chooses the parameters itself; " + manual_opt + " needs --accuracy manual");
     if (o.solver.kind == SolverKind::lu && o.op.method != "dense")
       throw UsageError("--solver lu needs --method dense");
+    if (!csv.empty()) {
+      const std::string name = std::filesystem::path(csv).filename().string();
+      if (name.empty() || name == "." || name == "..")
+        throw UsageError("--csv '" + csv + "': the path names a directory, not a file");
+    }
   } catch (const UsageError& e) {
     std::cerr << "panelrad cube: " << e.what() << "\n" << kCubeUsage;
     return 2;
   }
   set_threads(threads);
-  if (!csv.empty()) {  // fail before a long run, not after it
+  // SIGINT/SIGTERM/SIGHUP remove the CSV's temporary and end the run (status 128 + signal).
+  install_output_signal_handlers();
+  if (!csv.empty()) {  // fail before a long run, not after it; an existing CSV.probe is not touched
     try {
-      write_file_atomically(csv + ".probe", "");
-      std::filesystem::remove(csv + ".probe");
+      check_output_path(csv);
     } catch (const std::exception& e) {
       std::cerr << "panelrad cube: error: " << e.what() << "\n";
       return 1;

@@ -10,11 +10,13 @@
 #include <panelrad/scene_solver.hpp>
 #include <panelrad/text_output.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -38,6 +40,17 @@ const char* kSolveUsage =
 std::string default_prefix(const std::string& scene) {
   return std::filesystem::path(scene).stem().string() + "_radiosity";
 }
+
+/// The outputs are PREFIX.csv, PREFIX.ply, ... beside PREFIX: its file name part must be a plain
+/// name. An empty one ("d/") or one starting with '.' (".", "..", "out/.") makes hidden files.
+void check_prefix(const std::string& prefix) {
+  const std::string name = std::filesystem::path(prefix).filename().string();
+  if (name.empty() || name[0] == '.')
+    throw UsageError("--out '" + prefix + "': the file name part " +
+                     (name.empty() ? std::string("is empty") : "'" + name + "' starts with '.'") +
+                     ", so the outputs would be hidden files such as '" + prefix +
+                     ".csv'; give a prefix such as DIR/NAME");
+}
 }  // namespace
 
 int run_solve(int argc, char** argv) {
@@ -46,6 +59,7 @@ int run_solve(int argc, char** argv) {
   bool quiet = false, levels_given = false, max_given = false, manual = false;
   int threads = 0;
   std::set<std::string> wanted;
+  bool out_given = false;  // --out PREFIX
   try {
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
@@ -70,7 +84,7 @@ int run_solve(int argc, char** argv) {
       } else if (a == "--max-elements") {
         o.max_elements = parse_int(a, v, 1, 1 << 30);
         max_given = true;
-      } else if (a == "--out") prefix = v;
+      } else if (a == "--out") prefix = v, out_given = true;
       else if (a == "--materials") materials = v;
       else if (a == "--formats") formats = v;
       else if (a == "--method") {
@@ -100,48 +114,84 @@ int run_solve(int argc, char** argv) {
     if (scene_path.empty()) throw UsageError("no scene given");
     if (levels_given && max_given) throw UsageError("give --levels or --max-elements, not both");
     if (manual && o.method == "auto") throw UsageError("--eta, --degree, --near and --mu need --method dense or fast");
-    std::stringstream list(formats);
-    for (std::string f; std::getline(list, f, ',');) {
+    // --formats: a comma-separated list of at least one format; an empty entry ("", ",", "csv,")
+    // is an error, not "write nothing".
+    for (std::size_t begin = 0;;) {
+      const std::size_t end = std::min(formats.find(',', begin), formats.size());
+      const std::string f = formats.substr(begin, end - begin);
       if (f != "csv" && f != "ply" && f != "vtk" && f != "png")
-        throw UsageError("--formats: '" + f + "' is not csv, ply, vtk or png");
+        throw UsageError("--formats '" + formats + "': " +
+                         (f.empty() ? std::string("an empty entry") : "'" + f + "'") +
+                         " is not csv, ply, vtk or png");
       wanted.insert(f);
+      if (end == formats.size()) break;
+      begin = end + 1;
     }
+    if (out_given && prefix.empty()) throw UsageError("--out: the prefix is empty");
+    if (prefix.empty()) prefix = default_prefix(scene_path);
+    check_prefix(prefix);
   } catch (const UsageError& e) {
     std::cerr << "panelrad solve: " << e.what() << "\n" << kSolveUsage;
     return 2;
   }
-  const auto wants = [&](const char* f) { return wanted.count(f) > 0; };
-  if (prefix.empty()) prefix = default_prefix(scene_path);
+  std::vector<std::string> outputs;  // PREFIX.<format>, in writing order
+  for (const char* f : {"csv", "ply", "vtk", "png"})
+    if (wanted.count(f)) outputs.push_back(prefix + "." + f);
+  // SIGINT/SIGTERM/SIGHUP remove the outputs' temporaries and end the run (status 128 + signal).
+  install_output_signal_handlers();
   set_threads(threads);
   if (!quiet) o.progress = [](const std::string& line) { std::cerr << "panelrad solve: " << line << "\n"; };
 
   const ChannelScene scene = load_channel_scene(scene_path, materials);  // errors: exit 1 (main)
   if (!quiet)
     for (const std::string& note : scene.notes) std::cerr << "panelrad solve: note: " << note << "\n";
-  // Fail on an unwritable output before a long run, not after it.
-  write_file_atomically(prefix + ".probe", "");
-  std::filesystem::remove(prefix + ".probe");
+  // --max-elements N below n0: no level has n <= N, so level 0 (n = n0) is solved; said even
+  // with --quiet, since the run then does not do what was asked.
+  if (o.levels < 0 && static_cast<long long>(scene.mesh.triangles.size()) > o.max_elements)
+    std::cerr << "panelrad solve: note: " << (max_given ? "--max-elements " : "the default --max-elements ")
+              << o.max_elements << " is below the scene's " << scene.mesh.triangles.size()
+              << " triangles (n0): solving level 0, n = " << scene.mesh.triangles.size() << "\n";
+  // Everything about the outputs that can be checked is checked before a long run, not after it:
+  // the channel names as CSV columns, and that each output's directory takes a new file (a
+  // uniquely named temporary, removed again) and the output is not a directory.
+  try {
+    check_channel_names(scene.channels);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(scene_path + ": " + e.what());
+  }
+  for (const std::string& path : outputs) check_output_path(path);
 
   const SceneSolution s = solve_channel_scene(scene, o);
-  std::vector<std::string> written;
-  if (wants("csv")) write_radiosity_csv(prefix + ".csv", s.field), written.push_back(prefix + ".csv");
-  if (wants("ply")) write_radiosity_ply(prefix + ".ply", s.field), written.push_back(prefix + ".ply");
-  if (wants("vtk")) write_radiosity_vtk(prefix + ".vtk", s.field), written.push_back(prefix + ".vtk");
-  if (wants("png")) {
-    RenderOptions view;
-    view.view_direction = brightest_view_direction(s.field);  // look towards the light
-    write_radiosity_png(prefix + ".png", s.field, view);
-    written.push_back(prefix + ".png");
+  // All outputs are written to temporaries first and replace the previous ones only when every
+  // one was written: a failure (or SIGINT/SIGTERM) leaves the previous set untouched.
+  OutputSet set;
+  for (const std::string& path : outputs) {
+    const std::string format = path.substr(path.size() - 3);
+    if (format == "csv") set.add(path, radiosity_csv(s.field));
+    if (format == "ply") set.add(path, radiosity_ply(s.field));
+    if (format == "vtk") set.add(path, radiosity_vtk(s.field));
+    if (format == "png") {
+      RenderOptions view;
+      view.view_direction = brightest_view_direction(s.field);  // look towards the light
+      set.add(path, radiosity_png(s.field, view));
+    }
   }
+  set.commit();
+  const std::vector<std::string>& written = outputs;
 
   // Summary.
   std::printf("scene %s: %d facets, %zu channel%s\n", scene_path.c_str(), static_cast<int>(scene.mesh.num_facets),
               scene.num_channels(), scene.num_channels() > 1 ? "s" : "");
   std::printf("n = %d (level %d), h/diam = %.3e, %s\n", static_cast<int>(s.n), s.level, s.mesh_size / s.diameter,
               s.method.c_str());
-  if (s.self_check_error >= 0)
+  if (s.self_check_error >= 0) {
     std::printf("fast product self-check: relative error %.2e (accepted up to %.2e%s)\n", s.self_check_error,
                 s.self_check_threshold, s.tightened ? ", after tightening" : "");
+    std::printf("  worst over %d sampled rows, per test vector:", s.self_check.rows);
+    for (const SelfCheckVector& v : s.self_check.vectors)
+      std::printf("%s %s %.2e", &v == s.self_check.vectors.data() ? "" : ";", v.name.c_str(), v.relative_error);
+    std::printf("\n");
+  }
   std::printf("time: subdivision %.2f s, operator %.2f s (%s), solve %.2f s, total %.2f s; peak memory %.0f MB\n",
               s.subdivision_s, s.operator_s, format_bytes(static_cast<double>(s.operator_bytes)).c_str(), s.solve_s,
               s.total_s, s.peak_rss_mb);

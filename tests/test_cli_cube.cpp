@@ -81,4 +81,22 @@ TEST(CliCube, UnwritableCsvIsAnErrorAndLeavesNoFile) {
   EXPECT_FALSE(std::filesystem::exists("/nonexistent-dir/x.csv"));
 }
 
+// The write check before the run uses a uniquely named temporary: an existing CSV.probe is not
+// touched, and nothing but the CSV is left. A path that names a directory is a usage error.
+TEST(CliCube, CsvWriteCheckKeepsAnExistingProbeFile) {
+  namespace fs = std::filesystem;
+  const fs::path dir = temp_path("probe");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "x.csv.probe") << "the user's own file";
+  const CliRun r = run("cube --levels 0 --csv " + (dir / "x.csv").string());
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(lines_of((dir / "x.csv.probe").string()), std::vector<std::string>{"the user's own file"});
+  EXPECT_TRUE(fs::exists(dir / "x.csv"));
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 2);
+  EXPECT_EQ(run("cube --levels 0 --csv " + dir.string() + "/").status, 2);
+  EXPECT_EQ(run("cube --levels 0 --csv " + dir.string() + "/.").status, 2);
+  fs::remove_all(dir);
+}
+
 }  // namespace

@@ -12,8 +12,14 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <vector>
+
+#include <cerrno>
+#include <csignal>
+#include <cstring>
+#include <unistd.h>
 
 namespace {
 
@@ -201,6 +207,176 @@ TEST_F(CliSolve, UsageErrors) {
   EXPECT_EQ(run("solve " + kScenes + "prism_lamp.off --levels -1").status, 2);
   EXPECT_EQ(run("solve a.off b.off").status, 2);
   EXPECT_EQ(run("solve --help").status, 0);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Outputs as a set: a run writes all of its outputs, or leaves the previous ones untouched.
+
+/// Every entry of a directory: name -> contents ("<dir>" for a directory).
+std::map<std::string, std::string> listing(const fs::path& dir) {
+  std::map<std::string, std::string> out;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    std::ifstream in(e.path(), std::ios::binary);
+    out[e.path().filename().string()] =
+        e.is_directory() ? "<dir>" : std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  return out;
+}
+
+/// The program started directly (no shell), its stdout and stderr on `output`; SIGINT and SIGTERM
+/// at their default as in a foreground program; optionally a file size limit with SIGXFSZ
+/// ignored, so a write beyond it fails with EFBIG as a full disk fails with ENOSPC (also for root).
+struct Spawned {
+  pid_t pid = -1;
+  int output = -1;
+};
+Spawned spawn_cli(const std::vector<std::string>& args, rlim_t file_size_limit = RLIM_INFINITY) {
+  std::vector<char*> argv{const_cast<char*>(PANELRAD_CLI)};
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  int p[2];
+  if (::pipe(p) != 0) return {};
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    ::dup2(p[1], 1);
+    ::dup2(p[1], 2);
+    ::close(p[0]);
+    ::close(p[1]);
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
+    sigset_t none;
+    sigemptyset(&none);
+    ::sigprocmask(SIG_SETMASK, &none, nullptr);
+    if (file_size_limit != RLIM_INFINITY) {
+      const rlimit limit{file_size_limit, file_size_limit};
+      ::setrlimit(RLIMIT_FSIZE, &limit);
+      std::signal(SIGXFSZ, SIG_IGN);
+    }
+    ::execv(PANELRAD_CLI, argv.data());
+    ::_exit(127);
+  }
+  ::close(p[1]);
+  return {pid, p[0]};
+}
+
+/// Reads the child's output until it contains `marker` (true) or ends (false).
+bool read_until(int fd, const std::string& marker, std::string& seen) {
+  char c;
+  while (seen.find(marker) == std::string::npos)
+    if (::read(fd, &c, 1) != 1) return false;
+    else seen += c;
+  return true;
+}
+
+/// Reads the rest of the output and waits for the child; returns its wait status.
+int finish(const Spawned& s, std::string& seen) {
+  char buf[4096];
+  for (ssize_t n; (n = ::read(s.output, buf, sizeof buf)) > 0;) seen.append(buf, static_cast<std::size_t>(n));
+  ::close(s.output);
+  int status = 0;
+  ::waitpid(s.pid, &status, 0);
+  return status;
+}
+
+// SIGINT or SIGTERM during the solve: nothing of the run is left (no temporary, no probe), the
+// previous outputs are unchanged, and the run ends by the signal (a shell shows 128 + signal).
+// Level 3 takes seconds after the "subdividing" line, the signal comes right after it.
+TEST_F(CliSolve, SignalDuringTheSolveLeavesThePreviousOutputs) {
+  ASSERT_EQ(run("solve --quiet " + kScenes + "prism_lamp.off --levels 1 --out " + path("p")).status, 0);
+  const auto before = listing(dir_);
+  ASSERT_EQ(before.size(), 4u);
+  for (const int sig : {SIGINT, SIGTERM}) {
+    const Spawned child = spawn_cli({"solve", kScenes + "prism_lamp.off", "--levels", "3", "--out", path("p")});
+    ASSERT_GE(child.pid, 0);
+    std::string seen;
+    const bool solving = read_until(child.output, "subdividing", seen);
+    ::kill(child.pid, sig);
+    const int status = finish(child, seen);
+    ASSERT_TRUE(solving) << seen;
+    ASSERT_TRUE(WIFSIGNALED(status)) << "signal " << sig << ", status " << status << "\n" << seen;
+    EXPECT_EQ(WTERMSIG(status), sig);
+    EXPECT_EQ(listing(dir_), before) << "signal " << sig;
+  }
+}
+
+// A write that fails (here the file size limit, between the sizes of the new PLY and VTK, so the
+// PLY's temporary is complete when the VTK's fails) leaves the previous PLY, VTK and PNG as they
+// were: no new PLY beside a stale VTK, no temporary; exit status 1 naming the file and the reason.
+TEST_F(CliSolve, WriteFailureLeavesThePreviousOutputs) {
+  const std::string formats = "--formats ply,vtk,png";
+  ASSERT_EQ(run("solve --quiet " + kScenes + "prism_lamp.off --levels 2 " + formats + " --out " + path("new")).status, 0);
+  const auto ply = fs::file_size(path("new.ply")), vtk = fs::file_size(path("new.vtk"));
+  ASSERT_LT(ply, vtk);
+  for (const char* ext : {".ply", ".vtk", ".png"}) fs::remove(path(std::string("new") + ext));
+  ASSERT_EQ(run("solve --quiet " + kScenes + "prism_lamp.off --levels 1 " + formats + " --out " + path("p")).status, 0);
+  const auto before = listing(dir_);
+  const Spawned child = spawn_cli({"solve", "--quiet", kScenes + "prism_lamp.off", "--levels", "2", "--formats",
+                                   "ply,vtk,png", "--out", path("p")},
+                                  static_cast<rlim_t>(ply + 1));
+  ASSERT_GE(child.pid, 0);
+  std::string seen;
+  const int status = finish(child, seen);
+  ASSERT_TRUE(WIFEXITED(status)) << status << "\n" << seen;
+  EXPECT_EQ(WEXITSTATUS(status), 1) << seen;
+  EXPECT_CONTAINS(seen, path("p.vtk"));
+  EXPECT_CONTAINS(seen, std::strerror(EFBIG));
+  EXPECT_EQ(seen.find("wrote"), std::string::npos) << seen;
+  EXPECT_EQ(listing(dir_), before);
+}
+
+// The write check before the solve does not touch a user's PREFIX.probe.
+TEST_F(CliSolve, WriteCheckKeepsAnExistingProbeFile) {
+  write("p.probe", "the user's own file");
+  write("p.csv.probe", "another");
+  const CliRun r = run("solve --quiet " + kScenes + "prism_lamp.off --levels 1 --formats csv --out " + path("p"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto after = listing(dir_);
+  EXPECT_EQ(after.size(), 3u);
+  EXPECT_EQ(after.at("p.probe"), "the user's own file");
+  EXPECT_EQ(after.at("p.csv.probe"), "another");
+  EXPECT_TRUE(after.count("p.csv"));
+}
+
+// Everything that can be checked about the outputs is checked before the solve: an empty format
+// list or entry, a prefix that would make hidden files or names a directory (usage errors, 2), an
+// output that is a directory and channel names that cannot be CSV columns (1). Nothing is written.
+TEST_F(CliSolve, OutputsAreCheckedBeforeTheSolve) {
+  const std::string scene = kScenes + "prism_lamp.off --levels 1 ";
+  fs::create_directory(path("d"));
+  const auto before = listing(dir_);
+  for (const char* formats : {"''", ",", "csv,", ",csv", "csv,,ply"}) {
+    const CliRun r = run("solve " + scene + "--formats " + std::string(formats) + " --out " + path("p"));
+    EXPECT_EQ(r.status, 2) << formats << "\n" << r.output;
+    EXPECT_CONTAINS(r.output, "--formats");
+  }
+  for (const std::string& prefix : {path("d/"), path("d/."), path("d/.."), path(".hidden"), std::string("."),
+                                   std::string("..")}) {
+    const CliRun r = run("solve " + scene + "--out '" + prefix + "'");
+    EXPECT_EQ(r.status, 2) << prefix << "\n" << r.output;
+    EXPECT_CONTAINS(r.output, "--out '" + prefix + "'");
+    EXPECT_EQ(r.output.find("subdividing"), std::string::npos) << r.output;
+  }
+  EXPECT_EQ(run("solve " + scene + "--out ''").status, 2);
+  EXPECT_EQ(listing(dir_), before);
+
+  fs::create_directory(path("p.vtk"));
+  CliRun r = run("solve " + scene + "--out " + path("p"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_CONTAINS(r.output, path("p.vtk"));
+  EXPECT_CONTAINS(r.output, "directory");
+  EXPECT_EQ(r.output.find("subdividing"), std::string::npos) << r.output;
+  fs::remove(path("p.vtk"));
+  EXPECT_EQ(listing(dir_), before);
+
+  // A channel name with a space cannot be a CSV column: refused before the solve, not after it.
+  fs::copy_file(kScenes + "prism_lamp.off", path("lamp.off"));
+  write("lamp.json", R"({"channels": ["warm light"], "default": {"rho": 0.5, "E": 1}})");
+  r = run("solve " + path("lamp.off") + " --levels 1 --out " + path("p"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_CONTAINS(r.output, path("lamp.off"));
+  EXPECT_CONTAINS(r.output, "'warm light'");
+  EXPECT_EQ(r.output.find("subdividing"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(path("p.csv")));
 }
 
 }  // namespace

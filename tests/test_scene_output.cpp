@@ -1,6 +1,7 @@
 // Outputs of a solved scene: CSV round trip, PLY and VTK structure, the PNG picture (decoded with
 // libpng), colour rules, and refusal of invalid fields without leaving files behind.
 #include <panelrad/scene_output.hpp>
+#include <panelrad/text_output.hpp>
 
 #include <gtest/gtest.h>
 
@@ -18,6 +19,10 @@
 #include <string>
 #include <vector>
 
+#include <csignal>
+#include <map>
+#include <sys/resource.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -452,6 +457,231 @@ TEST_F(SceneOutput, RewritingReplacesTheFile) {
   panelrad::write_radiosity_csv(path("r.csv"), rgb_cube(1));
   EXPECT_EQ(lines_of(path("r.csv")).size(), 13u);
   EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator{}), 1);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Outputs as a set: all written, or the previous ones untouched.
+
+std::string contents_of(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+/// Every entry of the directory: name -> contents ("<dir>" for a directory).
+std::map<std::string, std::string> listing(const fs::path& dir) {
+  std::map<std::string, std::string> out;
+  for (const auto& e : fs::directory_iterator(dir))
+    out[e.path().filename().string()] = e.is_directory() ? "<dir>" : contents_of(e.path());
+  return out;
+}
+
+void put(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
+
+TEST_F(SceneOutput, OutputSetReplacesAllFilesAndLeavesNothingElse) {
+  put(path("a.csv"), "old csv");
+  put(path("a.ply"), "old ply");
+  {
+    panelrad::OutputSet set;
+    set.add(path("a.csv"), "new csv");
+    set.add(path("a.ply"), "new ply");
+    set.add(path("a.vtk"), "new vtk");
+    EXPECT_THROW(set.add(path("a.ply"), "twice"), std::invalid_argument);
+    set.commit();
+  }
+  EXPECT_EQ(listing(dir_), (std::map<std::string, std::string>{
+                               {"a.csv", "new csv"}, {"a.ply", "new ply"}, {"a.vtk", "new vtk"}}));
+  {  // a set that is not committed leaves no temporary and changes nothing
+    panelrad::OutputSet set;
+    set.add(path("a.csv"), "newer csv");
+    EXPECT_EQ(listing(dir_).size(), 4u);  // the temporary exists while the set is open
+  }
+  EXPECT_EQ(listing(dir_), (std::map<std::string, std::string>{
+                               {"a.csv", "new csv"}, {"a.ply", "new ply"}, {"a.vtk", "new vtk"}}));
+}
+
+// A write that fails on the third file (the file size limit makes write() fail with EFBIG, as a
+// full disk fails it with ENOSPC, also for root): the first two temporaries are removed and the
+// previous files are unchanged. In a child process, so the limit does not reach the test runner.
+TEST_F(SceneOutput, OutputSetWriteFailureKeepsThePreviousSet) {
+  const std::map<std::string, std::string> before = {
+      {"a.csv", "old csv"}, {"a.ply", "old ply"}, {"a.vtk", "old vtk"}};
+  for (const auto& [name, text] : before) put(path(name), text);
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    const rlimit limit{4096, 4096};
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+    std::signal(SIGXFSZ, SIG_IGN);
+    int code = 4;  // no exception
+    try {
+      panelrad::OutputSet set;
+      set.add(path("a.csv"), std::string(1000, 'c'));
+      set.add(path("a.ply"), std::string(1000, 'p'));
+      set.add(path("a.vtk"), std::string(10000, 'v'));  // beyond the limit
+      set.commit();
+    } catch (const std::runtime_error& e) {
+      const std::string what = e.what();
+      code = what.find(path("a.vtk")) != std::string::npos &&
+                     what.find(std::strerror(EFBIG)) != std::string::npos
+                 ? 0
+                 : 3;
+    }
+    ::_exit(code);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status)) << status;
+  EXPECT_EQ(WEXITSTATUS(status), 0) << "3: the message does not name a.vtk and EFBIG; 4: no error";
+  EXPECT_EQ(listing(dir_), before);
+}
+
+// A rename that fails part-way (the third target is a directory): the file already replaced gets
+// its previous contents back, a new one is removed again, the rest is untouched.
+TEST_F(SceneOutput, OutputSetFailedRenameRestoresThePreviousFiles) {
+  put(path("a.csv"), "old csv");
+  put(path("a.ply"), "old ply");
+  fs::create_directory(path("a.vtk"));
+  put(path("a.vtk") + "/inside", "x");
+  const auto before = listing(dir_);
+  panelrad::OutputSet set;
+  set.add(path("a.csv"), "new csv");
+  set.add(path("a.png"), "new png");  // no previous file
+  set.add(path("a.vtk"), "new vtk");
+  set.add(path("a.ply"), "new ply");
+  try {
+    set.commit();
+    ADD_FAILURE() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(path("a.vtk")), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("previous files are unchanged"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(listing(dir_), before);
+  EXPECT_EQ(contents_of(path("a.vtk") + "/inside"), "x");
+}
+
+// SIGTERM or SIGINT while the temporaries exist: the handler removes them, the previous files
+// stay, and the process ends by that signal (a shell shows 128 + signal).
+TEST_F(SceneOutput, SignalWhileWritingRemovesTheTemporaries) {
+  for (const int sig : {SIGTERM, SIGINT}) {
+    const std::map<std::string, std::string> before = {{"a.csv", "old csv"}, {"a.ply", "old ply"}};
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    for (const auto& [name, text] : before) put(path(name), text);
+    int ready[2];
+    ASSERT_EQ(::pipe(ready), 0);
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      ::close(ready[0]);
+      // As in a foreground program: the signal neither ignored nor blocked (a test runner started
+      // in the background of a script inherits SIGINT ignored).
+      std::signal(sig, SIG_DFL);
+      sigset_t unblock;
+      sigemptyset(&unblock);
+      sigaddset(&unblock, sig);
+      ::sigprocmask(SIG_UNBLOCK, &unblock, nullptr);
+      panelrad::install_output_signal_handlers();
+      panelrad::OutputSet set;
+      set.add(path("a.csv"), "new csv");
+      set.add(path("a.ply"), "new ply");
+      set.add(path("a.vtk"), "new vtk");
+      const char byte = 'r';
+      if (::write(ready[1], &byte, 1) != 1) ::_exit(5);
+      for (;;) ::pause();
+    }
+    ::close(ready[1]);
+    char byte = 0;
+    const bool got = ::read(ready[0], &byte, 1) == 1;
+    ::close(ready[0]);
+    const std::size_t entries_while_writing = listing(dir_).size();
+    ::kill(child, sig);
+    int status = 0;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    ASSERT_TRUE(got) << "the child did not reach its pause, status " << status;
+    EXPECT_EQ(entries_while_writing, 5u) << "2 previous files + 3 temporaries";
+    ASSERT_TRUE(WIFSIGNALED(status)) << "signal " << sig << ", status " << status;
+    EXPECT_EQ(WTERMSIG(status), sig);
+    EXPECT_EQ(listing(dir_), before) << "signal " << sig;
+  }
+}
+
+// The write check uses a uniquely named temporary: a user's PREFIX.probe (and a file with the
+// temporary naming of older versions, PATH.tmp.PID) are not touched.
+TEST_F(SceneOutput, CheckOutputPathTouchesNoExistingFile) {
+  put(path("p.csv.probe"), "user's probe");
+  put(path("p.csv.tmp." + std::to_string(::getpid())), "user's file");
+  const auto before = listing(dir_);
+  EXPECT_NO_THROW(panelrad::check_output_path(path("p.csv")));
+  EXPECT_EQ(listing(dir_), before);
+  panelrad::write_file_atomically(path("p.csv"), "written");
+  auto after = before;
+  after["p.csv"] = "written";
+  EXPECT_EQ(listing(dir_), after);
+
+  fs::create_directory(path("d.csv"));
+  try {
+    panelrad::check_output_path(path("d.csv"));
+    ADD_FAILURE() << "a directory accepted as an output";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(path("d.csv")), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("directory"), std::string::npos) << e.what();
+  }
+  try {
+    panelrad::check_output_path(path("missing/x.csv"));
+    ADD_FAILURE() << "a missing directory accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(path("missing/x.csv")), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(path("missing")));
+  after["d.csv"] = "<dir>";
+  EXPECT_EQ(listing(dir_), after);
+}
+
+TEST_F(SceneOutput, ChannelNamesAreCheckedOnTheirOwn) {
+  EXPECT_NO_THROW(panelrad::check_channel_names({"R", "G", "B"}));
+  EXPECT_NO_THROW(panelrad::check_channel_names({"value"}));
+  EXPECT_THROW(panelrad::check_channel_names({}), std::invalid_argument);
+  EXPECT_THROW(panelrad::check_channel_names({"R", "G B"}), std::invalid_argument);
+  EXPECT_THROW(panelrad::check_channel_names({"R", ""}), std::invalid_argument);
+  EXPECT_THROW(panelrad::check_channel_names({"a", "a"}), std::invalid_argument);
+  EXPECT_THROW(panelrad::check_channel_names({"u,v"}), std::invalid_argument);  // a CSV separator
+}
+
+// PLY: a channel with a value float32 cannot hold (above FLT_MAX it would be inf, below FLT_MIN
+// subnormal or 0) is written as double with 17 digits (round trip, compared exactly); the other
+// channels stay float.
+TEST_F(SceneOutput, PlyValuesBeyondFloatAreWrittenAsDouble) {
+  ElementField f = rgb_cube();
+  f.radiosity[0][2] = 1e300;   // > FLT_MAX = 3.4e38
+  f.radiosity[1][5] = 1e-40;   // < FLT_MIN = 1.2e-38: subnormal as a float
+  panelrad::write_radiosity_ply(path("r.ply"), f);
+  const auto lines = lines_of(path("r.ply"));
+  const auto end = std::find(lines.begin(), lines.end(), "end_header");
+  ASSERT_NE(end, lines.end());
+  const std::vector<std::string> header(lines.begin(), end);
+  const auto has = [&](const std::string& l) {
+    return std::find(header.begin(), header.end(), l) != header.end();
+  };
+  EXPECT_TRUE(has("property double u_R"));
+  EXPECT_TRUE(has("property double u_G"));
+  EXPECT_TRUE(has("property float u_B"));
+  const std::size_t body = static_cast<std::size_t>(end - lines.begin()) + 1 + 8;
+  ASSERT_EQ(lines.size(), body + 12);
+  for (std::size_t i = 0; i < 12; ++i) {
+    EXPECT_EQ(lines[body + i].find("inf"), std::string::npos) << lines[body + i];
+    const auto v = split(lines[body + i], ' ');
+    ASSERT_EQ(v.size(), 10u) << lines[body + i];
+    const auto j = static_cast<Eigen::Index>(i);
+    EXPECT_EQ(std::strtod(v[7].c_str(), nullptr), f.radiosity[0][j]) << i;
+    EXPECT_EQ(std::strtod(v[8].c_str(), nullptr), f.radiosity[1][j]) << i;
+    EXPECT_EQ(std::strtof(v[9].c_str(), nullptr), static_cast<float>(f.radiosity[2][j])) << i;
+  }
+  // A field whose values all fit keeps float (0 fits: it is exact in float).
+  f = scalar_cube();
+  f.radiosity[0][0] = 0.0;
+  panelrad::write_radiosity_ply(path("s.ply"), f);
+  const auto s = lines_of(path("s.ply"));
+  EXPECT_NE(std::find(s.begin(), s.end(), "property float u"), s.end());
 }
 
 }  // namespace

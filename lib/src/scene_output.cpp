@@ -40,6 +40,19 @@ void check_vec3(const char* who, const Vec3& v, const char* what, std::size_t i)
   }
 }
 
+void check_names(const char* who, const std::vector<std::string>& channels) {
+  if (channels.empty()) invalid(who, "the field has no channels");
+  std::set<std::string> names;
+  for (const std::string& c : channels) {
+    // Channel names become CSV columns and PLY/VTK property names: one plain token each.
+    if (c.empty()) invalid(who, "empty channel name");
+    for (const char ch : c)
+      if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-' || ch == '.'))
+        invalid(who, "channel name '" + c + "' has a character other than letters, digits, _ - .");
+    if (!names.insert(c).second) invalid(who, "channel name '" + c + "' appears twice");
+  }
+}
+
 /// Throws std::invalid_argument naming the first problem: sizes, channel names, non-finite values.
 void validate(const char* who, const ElementField& f) {
   const std::size_t n = f.triangle.size();
@@ -54,16 +67,7 @@ void validate(const char* who, const ElementField& f) {
   same(f.area.size(), "area");
   same(f.facet.size(), "facet");
   const std::size_t C = f.channels.size();
-  if (C == 0) invalid(who, "the field has no channels");
-  std::set<std::string> names;
-  for (const std::string& c : f.channels) {
-    // Channel names become CSV columns and PLY/VTK property names: one plain token each.
-    if (c.empty()) invalid(who, "empty channel name");
-    for (const char ch : c)
-      if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-' || ch == '.'))
-        invalid(who, "channel name '" + c + "' has a character other than letters, digits, _ - .");
-    if (!names.insert(c).second) invalid(who, "channel name '" + c + "' appears twice");
-  }
+  check_names(who, f.channels);
   const auto per_channel = [&](const std::vector<Eigen::VectorXd>& v, const char* what) {
     if (v.size() != C)
       invalid(who, std::string(what) + " has " + std::to_string(v.size()) + " channels for " +
@@ -110,6 +114,15 @@ void append_g9(std::string& out, double v) {  // float properties: 9 digits roun
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.9g", static_cast<double>(static_cast<float>(v)));
   out += buf;
+}
+
+/// True when float32 holds v to its full relative precision: v is zero or a normal float after
+/// rounding (FLT_MIN <= |v| <= FLT_MAX). Larger values would become inf, smaller ones subnormal
+/// (fewer digits) or 0.
+bool fits_float(double v) {
+  if (v == 0.0) return true;
+  const float f = static_cast<float>(v);
+  return std::fpclassify(f) == FP_NORMAL;
 }
 
 /// Column/property suffix of channel c: "_<name>", or "" for a single-channel field (rho, E, u).
@@ -357,7 +370,15 @@ void check_options(const RenderOptions& o) {
 
 // ---------------------------------------------------------------------------------------------
 
+void check_channel_names(const std::vector<std::string>& channels) {
+  check_names("channel names", channels);
+}
+
 void write_radiosity_csv(const std::string& path, const ElementField& field) {
+  write_file_atomically(path, radiosity_csv(field));
+}
+
+std::string radiosity_csv(const ElementField& field) {
   validate("write_radiosity_csv", field);
   std::string out = "element,facet,x,y,z,area";
   for (std::size_t c = 0; c < field.channels.size(); ++c) {
@@ -380,7 +401,7 @@ void write_radiosity_csv(const std::string& path, const ElementField& field) {
       }
     out += '\n';
   }
-  write_file_atomically(path, out);
+  return out;
 }
 
 namespace {
@@ -398,7 +419,15 @@ void append_points(std::string& out, const std::vector<Vec3>& points) {
 }  // namespace
 
 void write_radiosity_ply(const std::string& path, const ElementField& field) {
+  write_file_atomically(path, radiosity_ply(field));
+}
+
+std::string radiosity_ply(const ElementField& field) {
   validate("write_radiosity_ply", field);
+  std::vector<bool> as_float(field.channels.size(), true);
+  for (std::size_t c = 0; c < field.channels.size(); ++c)
+    for (std::size_t i = 0; i < field.size() && as_float[c]; ++i)
+      as_float[c] = fits_float(value(field.radiosity[c], i));
   const SharedVertices sv = share_vertices(field);
   const std::vector<Rgb> colour = colours_of_valid(field);
   std::string out = "ply\nformat ascii 1.0\ncomment panelrad radiosity\n";
@@ -408,7 +437,7 @@ void write_radiosity_ply(const std::string& path, const ElementField& field) {
   out += "property list uchar int vertex_indices\n";
   out += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
   for (std::size_t c = 0; c < field.channels.size(); ++c)
-    out += "property float u" + suffix(field, c) + "\n";
+    out += std::string(as_float[c] ? "property float u" : "property double u") + suffix(field, c) + "\n";
   out += "end_header\n";
   append_points(out, sv.points);
   for (std::size_t i = 0; i < field.size(); ++i) {
@@ -417,14 +446,19 @@ void write_radiosity_ply(const std::string& path, const ElementField& field) {
     for (const unsigned char b : colour[i]) out += ' ' + std::to_string(static_cast<int>(b));
     for (std::size_t c = 0; c < field.channels.size(); ++c) {
       out += ' ';
-      append_g9(out, value(field.radiosity[c], i));
+      if (as_float[c]) append_g9(out, value(field.radiosity[c], i));
+      else append_g17(out, value(field.radiosity[c], i));
     }
     out += '\n';
   }
-  write_file_atomically(path, out);
+  return out;
 }
 
 void write_radiosity_vtk(const std::string& path, const ElementField& field) {
+  write_file_atomically(path, radiosity_vtk(field));
+}
+
+std::string radiosity_vtk(const ElementField& field) {
   validate("write_radiosity_vtk", field);
   const SharedVertices sv = share_vertices(field);
   const std::size_t n = field.size();
@@ -460,7 +494,7 @@ void write_radiosity_vtk(const std::string& path, const ElementField& field) {
       out += buf;
     }
   }
-  write_file_atomically(path, out);
+  return out;
 }
 
 Vec3 brightest_view_direction(const ElementField& field) {
@@ -493,6 +527,10 @@ std::vector<std::array<unsigned char, 3>> element_colours(const ElementField& fi
 
 void write_radiosity_png(const std::string& path, const ElementField& field,
                          const RenderOptions& options) {
+  write_file_atomically(path, radiosity_png(field, options));
+}
+
+std::string radiosity_png(const ElementField& field, const RenderOptions& options) {
   validate("write_radiosity_png", field);
   check_options(options);
   const std::vector<Rgb> colour = colours_of_valid(field);
@@ -574,8 +612,8 @@ void write_radiosity_png(const std::string& path, const ElementField& field,
   std::string png;
   PngSink sink{&png, {}};
   if (!encode_png(image.data(), W, H, &sink))
-    throw std::runtime_error("cannot write '" + path + "': libpng: " + sink.message);
-  write_file_atomically(path, png);
+    throw std::runtime_error(std::string("write_radiosity_png: libpng: ") + sink.message);
+  return png;
 }
 
 }  // namespace panelrad

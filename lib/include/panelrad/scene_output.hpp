@@ -1,7 +1,9 @@
 #pragma once
 // Outputs of a solved scene (issue 6): per-element radiosity as CSV, a PLY with per-face colours
 // (MeshLab, ParaView), a legacy VTK polydata file (ParaView), and a PNG picture from a default
-// viewpoint. Every file is written whole or not at all (write_file_atomically).
+// viewpoint. Each write_* function writes its file whole or not at all (write_file_atomically);
+// the radiosity_* functions return the file's contents, so that a program can write several of
+// them as one OutputSet (text_output.hpp): all of them, or none.
 #include <panelrad/geometry/mesh.hpp>
 
 #include <Eigen/Core>
@@ -25,17 +27,27 @@ struct ElementField {
   std::size_t size() const { return triangle.size(); }
 };
 
+/// Throws std::invalid_argument unless the names can be CSV columns and PLY/VTK property names:
+/// at least one, each a non-empty token of letters, digits, '_', '-', '.', no name twice. Lets a
+/// program check a scene's channels before solving it.
+void check_channel_names(const std::vector<std::string>& channels);
+
 /// CSV, one row per element: element,facet,x,y,z,area, then rho_<c>, E_<c>, u_<c> for each channel
 /// c (for a single channel: rho,E,u). Numbers with 17 significant digits (round-trip).
 void write_radiosity_csv(const std::string& path, const ElementField& field);
+std::string radiosity_csv(const ElementField& field);
 
 /// ASCII PLY: vertices (shared, deduplicated bit-exactly) and one face per element with uchar
-/// red, green, blue (the picture's colour mapping) and float properties u_<c> per channel.
+/// red, green, blue (the picture's colour mapping) and a property u_<c> per channel: float (9
+/// significant digits) when every value of the channel is zero or a normal float32
+/// (FLT_MIN <= |u| <= FLT_MAX), otherwise double (17 digits), so no value becomes inf or 0.
 void write_radiosity_ply(const std::string& path, const ElementField& field);
+std::string radiosity_ply(const ElementField& field);
 
 /// Legacy ASCII VTK POLYDATA: points, triangles, CELL_DATA scalars facet, area and per channel
 /// rho_<c>, E_<c>, u_<c>.
 void write_radiosity_vtk(const std::string& path, const ElementField& field);
+std::string radiosity_vtk(const ElementField& field);
 
 struct RenderOptions {
   int width = 960;
@@ -60,5 +72,6 @@ geometry::Vec3 brightest_view_direction(const ElementField& field);
 /// view_direction showing the faces whose inner side looks at the viewer (the far walls), each
 /// element flat-coloured by element_colours(), with a colour bar for scalar scenes.
 void write_radiosity_png(const std::string& path, const ElementField& field, const RenderOptions& options = {});
+std::string radiosity_png(const ElementField& field, const RenderOptions& options = {});
 
 }  // namespace panelrad
