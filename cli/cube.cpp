@@ -61,15 +61,17 @@ int run_cube(int argc, char** argv) {
         if (v != "exact" && v != "quadrature") throw UsageError("--near must be exact or quadrature, got '" + v + "'");
         o.op.near.rule = parse_near_rule(v);
       } else if (a == "--mu") o.op.near.mu = parse_int(a, v, 0, 6);
-      else if (a == "--rule") o.op.near.basic_rule = v;
-      else if (a == "--eta") o.op.eta = parse_double(a, v, 1e-3, 0.99);
+      else if (a == "--rule") {
+        check_quadrature_rule(a, v);
+        o.op.near.basic_rule = v;
+      } else if (a == "--eta") o.op.eta = parse_double(a, v, 1e-3, 0.99);
       else if (a == "--degree") o.op.degree = parse_int(a, v, 0, 12);
       else if (a == "--solver") {
         if (v != "auto" && v != "neumann" && v != "gmres" && v != "lu")
           throw UsageError("--solver must be auto, neumann, gmres or lu, got '" + v + "'");
         o.solver.kind = parse_solver(v);
       } else if (a == "--tol") o.solver.tolerance = v == "auto" ? 0.0 : parse_double(a, v, 1e-15, 0.5);
-      else if (a == "--threads") threads = parse_int(a, v, 0, 1024);
+      else if (a == "--threads") threads = parse_threads(a, v);
       else if (a == "--csv") csv = v;
       else throw UsageError("unknown option '" + a + "'");
     }
@@ -106,6 +108,8 @@ int run_cube(int argc, char** argv) {
   const bool automatic = accuracy != "manual" && manual_opt.empty() && o.solver.kind != SolverKind::lu;
   std::vector<CubeRow> rows;
   try {
+    // Every level, with the parameters it will get, is checked to fit before level 0 is solved.
+    check_paper_cube_fits(o, automatic);
     if (!automatic) {
       print_cube_header(std::cout, o);
       rows = run_paper_cube(o, [](const CubeRow& r) { print_cube_row(std::cout, r); });

@@ -108,7 +108,7 @@ int run_solve(int argc, char** argv) {
           throw UsageError("--solver must be auto, neumann or gmres, got '" + v + "'");
         o.solver = parse_solver(v);
       } else if (a == "--tol") o.tolerance = v == "auto" ? 0.0 : parse_double(a, v, 1e-15, 0.5);
-      else if (a == "--threads") threads = parse_int(a, v, 0, 1024);
+      else if (a == "--threads") threads = parse_threads(a, v);
       else throw UsageError("unknown option '" + a + "'");
     }
     if (scene_path.empty()) throw UsageError("no scene given");

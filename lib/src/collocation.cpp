@@ -10,7 +10,9 @@ namespace panelrad {
 
 Collocation::Collocation(const Scene& scene, int level) {
   Stopwatch clock;
-  tree_ = std::make_shared<const geometry::ClusterTree>(scene.mesh(), level);
+  // The tree is refused (with its estimate) when it exceeds what this process may still
+  // allocate: MemAvailable, ulimit -v and the cgroup limit (available_memory_bytes).
+  tree_ = std::make_shared<const geometry::ClusterTree>(scene.mesh(), level, available_memory_bytes());
   tree_s_ = clock.seconds();
   clock.restart();
   const Index n = tree_->num_elements();

@@ -2,6 +2,7 @@
 #include <panelrad/cube_example.hpp>
 #include <panelrad/dense_operator.hpp>
 #include <panelrad/fast_operator.hpp>
+#include <panelrad/memory_plan.hpp>
 #include <panelrad/resources.hpp>
 #include <panelrad/text_output.hpp>
 
@@ -11,16 +12,64 @@
 
 namespace panelrad {
 
-std::vector<CubeRow> run_paper_cube(const CubeRunOptions& options, const std::function<void(const CubeRow&)>& on_row) {
+std::vector<LevelMemoryEstimate> check_paper_cube_fits(const CubeRunOptions& options, bool automatic_parameters) {
   if (options.min_level < 0 || options.max_level < options.min_level)
     throw std::invalid_argument("levels: need 0 <= min_level <= max_level");
-  // Refuse a dense level that cannot fit before any work (the cube has n0 = 12).
-  if (options.op.method == "dense")
-    for (int level = options.min_level; level <= options.max_level; ++level)
-      DenseOperator::check_fits(static_cast<Index>(12) << (2 * level));
+  const Scene scene = make_paper_cube_scene();
+  std::vector<PlannedLevel> planned;
+  for (int level = options.min_level; level <= options.max_level; ++level)
+    planned.push_back({level, automatic_parameters ? choose_parameters(problem_size(scene.mesh(), level)) : options.op});
+  LevelMemoryOptions memory;
+  memory.collocation_vectors = 3;  // rho, E and the manufactured u (31)
+  const std::vector<LevelMemoryEstimate> levels =
+      estimate_levels_memory(scene.mesh(), planned, options.solver, scene.max_reflectivity(), memory);
+  refuse_levels_that_cannot_fit(levels, "cube ");
+  return levels;
+}
+
+namespace {
+// Where a run of the levels is, so that an allocation failure can name it.
+enum class CubeStage { tree, op, solve };
+struct CubeRunPosition {
+  int level = 0;
+  CubeStage stage = CubeStage::tree;
+};
+
+std::vector<CubeRow> solve_levels(const CubeRunOptions& options, const std::function<void(const CubeRow&)>& on_row,
+                                  CubeRunPosition& at);
+}  // namespace
+
+std::vector<CubeRow> run_paper_cube(const CubeRunOptions& options, const std::function<void(const CubeRow&)>& on_row) {
+  // Every level is estimated before level min_level is computed: a size that cannot fit is
+  // refused at once, not after the levels below it.
+  const std::vector<LevelMemoryEstimate> estimates = check_paper_cube_fits(options);
+  CubeRunPosition at;
+  try {
+    return solve_levels(options, on_row, at);
+  } catch (const std::bad_alloc&) {
+    const LevelMemoryEstimate& e = estimates[static_cast<std::size_t>(at.level - options.min_level)];
+    const std::string where = "cube level " + std::to_string(at.level) + ": ";
+    switch (at.stage) {
+      case CubeStage::tree:
+        throw ResourceError(where + out_of_memory_message("building the cluster tree (40) and the collocation points (22)",
+                                                          static_cast<double>(e.n), e.tree + e.collocation));
+      case CubeStage::op:
+        throw ResourceError(where + out_of_memory_message("building the operator (" + e.method + ")",
+                                                          static_cast<double>(e.n), e.op));
+      case CubeStage::solve:
+        break;
+    }
+    throw ResourceError(where + out_of_memory_message("solving (32)", static_cast<double>(e.n), e.solver));
+  }
+}
+
+namespace {
+std::vector<CubeRow> solve_levels(const CubeRunOptions& options, const std::function<void(const CubeRow&)>& on_row,
+                                  CubeRunPosition& at) {
   const Scene scene = make_paper_cube_scene();
   std::vector<CubeRow> rows;
   for (int level = options.min_level; level <= options.max_level; ++level) {
+    at = {level, CubeStage::tree};
     CubeRow row;
     row.method = options.op.method;
     row.near = to_string(options.op.near.rule);
@@ -34,6 +83,7 @@ std::vector<CubeRow> run_paper_cube(const CubeRunOptions& options, const std::fu
     row.emissivity_s = collocation.emissivity_seconds();
     Stopwatch clock;
     OperatorOptions op = options.op;
+    at.stage = CubeStage::op;
     auto K = make_operator(collocation, op);
     double check_error = 0;
     if (const auto* fast = dynamic_cast<const FastOperator*>(K.get())) {
@@ -65,6 +115,7 @@ std::vector<CubeRow> run_paper_cube(const CubeRunOptions& options, const std::fu
     SolverOptions solver = options.solver;
     if (!(solver.tolerance > 0))
       solver.tolerance = discretization_tolerance(collocation.tree().mesh_size(), collocation.tree().diameter());
+    at.stage = CubeStage::solve;
     const SolveResult result = solve(*K, collocation.emissivity(), solver, scene.max_reflectivity());
     row.solver = result.choice.empty() ? result.solver : result.choice;
     row.solve_s = result.seconds;
@@ -79,6 +130,7 @@ std::vector<CubeRow> run_paper_cube(const CubeRunOptions& options, const std::fu
   }
   return rows;
 }
+}  // namespace
 
 std::string cube_csv_header() {
   return "method,near,eta,mu,degree,n,max_error,setup_s,solve_s,iterations,conv_ratio,peak_rss_mb";

@@ -17,13 +17,14 @@ std::size_t DenseOperator::matrix_bytes(geometry::Index n) {
 
 void DenseOperator::check_fits(geometry::Index n) {
   const std::size_t need = matrix_bytes(n);
-  const std::size_t avail = available_memory_bytes();
+  const MemoryAvailability available = memory_availability();
+  const std::size_t avail = available.bytes();
   if (need > avail / 10 * 9) {
     std::ostringstream os;
     os << "dense matrix K_n for n = " << n << " needs " << format_bytes(static_cast<double>(need))
-       << " but only " << format_bytes(static_cast<double>(avail))
-       << " of memory is available; use the fast method (--method fast) or fewer levels";
-    throw std::runtime_error(os.str());
+       << " but only " << format_bytes(static_cast<double>(avail)) << " of memory is available ("
+       << available.binding() << "); use the fast method (--method fast) or fewer levels";
+    throw ResourceError(os.str());
   }
 }
 

@@ -68,12 +68,12 @@ FastOperator::FastOperator(const Collocation& collocation, const FastOptions& op
     const std::size_t peak = est.bytes + est.list_bytes;
     const std::size_t limit = options_.memory_limit ? options_.memory_limit : available_memory_bytes();
     if (peak > limit)
-      throw std::runtime_error("fast operator for n = " + std::to_string(n_) + " needs about " +
-                               format_bytes(static_cast<double>(peak)) + " during setup (" +
-                               format_bytes(static_cast<double>(est.list_bytes)) + " of near/far lists for about " +
-                               std::to_string(est.far_pairs) + " far pairs), more than the " +
-                               format_bytes(static_cast<double>(limit)) +
-                               " available; use fewer levels or a larger eta");
+      throw ResourceError("fast operator for n = " + std::to_string(n_) + " needs about " +
+                          format_bytes(static_cast<double>(peak)) + " during setup (" +
+                          format_bytes(static_cast<double>(est.list_bytes)) + " of near/far lists for about " +
+                          std::to_string(est.far_pairs) + " far pairs), more than the " +
+                          format_bytes(static_cast<double>(limit)) +
+                          " available; use fewer levels or a larger eta");
   }
   const auto stage = [&](const std::string& what) {
     if (options_.progress) options_.progress(what);
@@ -182,9 +182,9 @@ FastOperator::FastOperator(const Collocation& collocation, const FastOptions& op
   }
   if (out_of_memory) {
     blocks.clear();
-    throw std::runtime_error("fast operator for n = " + std::to_string(n_) +
-                             ": out of memory while building the near and far field lists; use fewer levels or a "
-                             "larger eta");
+    throw ResourceError("fast operator for n = " + std::to_string(n_) +
+                        ": out of memory while building the near and far field lists (" + describe_available_memory() +
+                        "); use fewer levels or a larger eta");
   }
   near_start_.assign(static_cast<std::size_t>(n_) + 1, 0);
   far_start_.assign(static_cast<std::size_t>(n_) + 1, 0);
@@ -266,9 +266,16 @@ FastOperator::MemoryEstimate FastOperator::estimate_memory(const Collocation& co
   e.far_pairs = static_cast<std::size_t>(static_cast<double>(far) * per_row * static_cast<double>(rows));
   e.list_bytes = near_pairs * (sizeof(Index) + sizeof(double)) + e.far_pairs * sizeof(Index);
   e.coefficient_bytes = e.far_pairs * T * sizeof(double);
-  e.bytes = e.list_bytes + clusters * (sizeof(PlaneFrame) + 2 * sizeof(double) + T * sizeof(double)) +
-            static_cast<std::size_t>(n) * (T * sizeof(double) + 7 * sizeof(double) + 2 * sizeof(std::int64_t));
+  e.bytes = e.list_bytes + fixed_bytes(static_cast<std::size_t>(n), clusters, degree);
   return e;
+}
+
+std::size_t FastOperator::fixed_bytes(std::size_t n, std::size_t clusters, int degree) {
+  const std::size_t T = static_cast<std::size_t>(num_taylor_terms(degree));
+  // Per cluster: frame, offset to the parent, moments per product; per element: its moments,
+  // rho, P, n_P, and the near/far row starts.
+  return clusters * (sizeof(PlaneFrame) + 2 * sizeof(double) + T * sizeof(double)) +
+         n * (T * sizeof(double) + 7 * sizeof(double) + 2 * sizeof(std::int64_t));
 }
 
 std::pair<int, Index> FastOperator::cluster_of_id(Index id) const {

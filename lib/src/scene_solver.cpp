@@ -1,6 +1,7 @@
 #include <panelrad/auto_parameters.hpp>
 #include <panelrad/collocation.hpp>
 #include <panelrad/dense_operator.hpp>
+#include <panelrad/memory_plan.hpp>
 #include <panelrad/resources.hpp>
 #include <panelrad/scene.hpp>
 #include <panelrad/scene_solver.hpp>
@@ -52,9 +53,29 @@ int identical_earlier_channel(const ChannelScene& scene, std::size_t c) {
   return -1;
 }
 
+// Where a solve is, so that an allocation failure can name the stage, n and the estimate.
+struct SceneSolvePosition {
+  std::string stage = "reading the options";
+  double n = 0;
+  std::size_t need = 0;  // bytes estimated for the stage, 0 when not known
+};
+
+SceneSolution solve_scene_stages(const ChannelScene& scene, const SceneSolveOptions& options, SceneSolvePosition& at);
+
 }  // namespace
 
 SceneSolution solve_channel_scene(const ChannelScene& scene, const SceneSolveOptions& options) {
+  SceneSolvePosition at;
+  try {
+    return solve_scene_stages(scene, options, at);
+  } catch (const std::bad_alloc&) {
+    throw ResourceError(out_of_memory_message(at.stage, at.n, at.need));
+  }
+}
+
+namespace {
+
+SceneSolution solve_scene_stages(const ChannelScene& scene, const SceneSolveOptions& options, SceneSolvePosition& at) {
   const auto say = [&](const std::string& line) {
     if (options.progress) options.progress(line);
   };
@@ -92,17 +113,30 @@ SceneSolution solve_channel_scene(const ChannelScene& scene, const SceneSolveOpt
   } else {
     throw std::invalid_argument("method '" + options.method + "' is not auto, dense or fast");
   }
-  if (op.method == "dense") {
-    const std::int64_t n_planned = static_cast<std::int64_t>(n0) << (2 * out.level);
-    if (n_planned > std::numeric_limits<Index>::max())
-      throw std::invalid_argument("n = " + std::to_string(n_planned) + " elements is too large for the dense method");
-    DenseOperator::check_fits(static_cast<Index>(n_planned));
-  }
+  // Everything this level will hold, estimated from the input mesh (memory_plan.hpp), and
+  // refused with the estimate when it cannot fit: before the subdivision starts.
+  SolverOptions planned_solver;
+  planned_solver.kind = options.solver;
+  double max_rho = 0;
+  for (const std::vector<double>& rho : scene.rho)
+    for (double r : rho) max_rho = std::max(max_rho, r);
+  LevelMemoryOptions memory;
+  memory.collocation_vectors = 4;  // the geometric collocation's rho, E and the unit-weight copy's
+  // Per element: the triangle, inner normal, centroid, area and facet of the output field, and
+  // per channel rho, E, radiosity (twice: solution and field) and irradiance.
+  memory.field_bytes_per_element = sizeof(std::array<Vec3, 3>) + 2 * sizeof(Vec3) + sizeof(double) + sizeof(Index) +
+                                   C * 5 * sizeof(double);
+  const LevelMemoryEstimate estimate =
+      estimate_level_memory(scene.mesh, out.level, op, planned_solver, max_rho, memory);
+  refuse_levels_that_cannot_fit({estimate}, (scene.mesh.source.empty() ? std::string("scene") : scene.mesh.source) + ": ");
+  at.n = static_cast<double>(estimate.n);
 
   // 1. Geometry: subdivision and collocation points (22); rho and E per channel by facet.
   Stopwatch clock;
   say("subdividing " + std::to_string(n0) + " triangles " + std::to_string(out.level) + " times: n = " +
       std::to_string(static_cast<long long>(n0) << (2 * out.level)));
+  at.stage = "subdividing: the cluster tree (40) and the collocation points (22)";
+  at.need = estimate.tree + estimate.collocation / 2;
   const Scene geometric(scene.mesh);  // rho, E of the channels are applied per row below
   const Collocation base(geometric, out.level);
   const Index n = out.n = base.size();
@@ -113,7 +147,13 @@ SceneSolution solve_channel_scene(const ChannelScene& scene, const SceneSolveOpt
 
   // 2. One operator for every channel: H (rho replaced by 1), so K_c = diag(rho_c) H.
   clock.restart();
-  op.progress = options.progress;
+  // The operator's own stages (near field, far field) are named by its progress lines.
+  at.stage = "building the operator (" + describe_parameters(op) + ")";
+  at.need = estimate.op;
+  op.progress = [&at, &options](const std::string& line) {
+    at.stage = "building the operator: " + line;
+    if (options.progress) options.progress(line);
+  };
   const Collocation unit = base.with_row_weights(Eigen::VectorXd::Ones(n));
   std::unique_ptr<RadiosityOperator> H = make_operator(unit, op);
   if (const auto* fast = dynamic_cast<const FastOperator*>(H.get())) {
@@ -148,6 +188,8 @@ SceneSolution solve_channel_scene(const ChannelScene& scene, const SceneSolveOpt
   solver.tolerance = options.tolerance > 0 ? options.tolerance : discretization_tolerance(out.mesh_size, out.diameter);
   // The elements and rho, E per channel at every element (by facet): what the solves and the
   // output writers need.
+  at.stage = "storing the per-element results (element geometry, rho and E of each channel)";
+  at.need = estimate.fields;
   ElementField& field = out.field;
   field.channels = scene.channels;
   field.triangle.resize(static_cast<std::size_t>(n));
@@ -199,6 +241,9 @@ SceneSolution solve_channel_scene(const ChannelScene& scene, const SceneSolveOpt
       out.channels.push_back(std::move(ch));
       continue;
     }
+    const SolverKind kind = solver.kind == SolverKind::automatic ? choose_solver(rho.maxCoeff()) : solver.kind;
+    at.stage = "solving channel " + ch.name + " (32) with " + to_string(kind);
+    at.need = estimate.solver;
     const double max_rho = rho.maxCoeff();
     const ScaledOperator K(*H, rho);
     SolverOptions channel_solver = solver;
@@ -234,5 +279,7 @@ SceneSolution solve_channel_scene(const ChannelScene& scene, const SceneSolveOpt
   out.total_s = total.seconds();
   return out;
 }
+
+}  // namespace
 
 }  // namespace panelrad

@@ -1,6 +1,7 @@
 #pragma once
 // The paper's cube example (section 3, (31); Table 1; Tables 2-4): solve on levels min..max and
 // report, per n, the error (51), times, iterations, the Neumann ratio (36) and peak memory.
+#include <panelrad/memory_plan.hpp>
 #include <panelrad/operator_factory.hpp>
 #include <panelrad/solvers.hpp>
 
@@ -47,7 +48,16 @@ struct CubeRow {
   int tightened = 0;                  ///< times the parameters were tightened after a failed check
 };
 
-/// Runs the levels in order; `on_row` (if set) sees each row as soon as it is done.
+/// Refuses (ResourceError with the estimate, memory_plan.hpp) before any work when a level
+/// min_level..max_level cannot fit: the cluster tree, the collocation, the operator and the
+/// solver of each level, with options.op, or with choose_parameters() per level when
+/// `automatic_parameters`. run_paper_cube calls it with its own options.
+/// Returns the estimates, one per level.
+std::vector<LevelMemoryEstimate> check_paper_cube_fits(const CubeRunOptions& options, bool automatic_parameters = false);
+
+/// Runs the levels in order; `on_row` (if set) sees each row as soon as it is done. Every level
+/// is checked to fit (check_paper_cube_fits) before the first is solved; an allocation that
+/// fails anyway is a ResourceError naming the level, the stage and the size.
 std::vector<CubeRow> run_paper_cube(const CubeRunOptions& options,
                                     const std::function<void(const CubeRow&)>& on_row = {});
 

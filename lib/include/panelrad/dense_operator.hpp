@@ -13,12 +13,12 @@ class DenseOperator final : public RadiosityOperator {
  public:
   using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-  /// Refuses (std::runtime_error with the estimate) a matrix that would not fit in memory.
+  /// Refuses (ResourceError, a std::runtime_error, with the estimate) a matrix that would not fit in memory.
   DenseOperator(const Collocation& collocation, const NearFieldOptions& options);
 
   /// Bytes needed for the matrix of order n.
   static std::size_t matrix_bytes(geometry::Index n);
-  /// Throws std::runtime_error (with the estimate and what is available) when the matrix of
+  /// Throws ResourceError (with the estimate and what is available) when the matrix of
   /// order n would not fit in memory; called before anything is allocated or computed.
   static void check_fits(geometry::Index n);
 

@@ -80,6 +80,9 @@ class FastOperator final : public RadiosityOperator {
     std::size_t coefficient_bytes = 0;  ///< far_pairs x terms x 8, if stored
   };
   static MemoryEstimate estimate_memory(const Collocation& collocation, double eta, int degree);
+  /// Bytes of the arrays whose size depends only on n, the number of clusters and M (frames,
+  /// moments, row data, row starts): MemoryEstimate::bytes without the near/far lists.
+  static std::size_t fixed_bytes(std::size_t n, std::size_t clusters, int degree);
 
   /// Cluster ids of the far field and element ids of the near field of row i (for tests: the
   /// covering plus the skipped coplanar clusters must partition the surface). Cluster id =

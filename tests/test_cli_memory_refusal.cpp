@@ -1,0 +1,161 @@
+// The CLI refuses sizes that cannot fit before any work, by every command, with the estimate;
+// the memory available honours the process's own limit (ulimit -v); option checks at parse
+// time: --threads, cube --rule, the --tol range, --max-elements below n0.
+#include "cli_run.hpp"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#if defined(__SANITIZE_ADDRESS__)
+#define PANELRAD_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define PANELRAD_ASAN 1
+#endif
+#endif
+
+namespace {
+
+using panelrad::testing::CliRun;
+const std::string kCornell = std::string(PANELRAD_SOURCE_DIR) + "/examples/scenes/cornell_box.obj";
+
+CliRun run(const std::string& args) { return panelrad::testing::run_cli(args); }
+
+// An output prefix in a fresh directory (the outputs are probed before the solve; a refusal
+// leaves the directory empty).
+std::string out_prefix() {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("panelrad_cli_memory_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  return (dir / "x").string();
+}
+
+// Runs the CLI under `ulimit -v kb` (RLIMIT_AS). The CLI binary is built with the same flags as
+// this test, so under AddressSanitizer (terabytes of shadow mappings) this cannot work: skipped.
+CliRun run_limited(long long kb, const std::string& args, double* seconds = nullptr) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::string cmd = "ulimit -v " + std::to_string(kb) + "; exec \"" + PANELRAD_CLI + "\" " + args + " 2>&1";
+  CliRun limited;
+  FILE* pipe = ::popen(cmd.c_str(), "r");
+  if (pipe) {
+    char buf[4096];
+    while (const std::size_t n = std::fread(buf, 1, sizeof buf, pipe)) limited.output.append(buf, n);
+    const int st = ::pclose(pipe);
+    limited.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  }
+  if (seconds) *seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return limited;
+}
+
+constexpr long long kSixGB = 6000000;  // kB, as `ulimit -v 6000000`
+
+// A refusal under the address-space limit: exit 1, the estimate and the limit that binds, and
+// nothing computed (no table row, no subdivision).
+void expect_refused(const CliRun& r, const std::string& n) {
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_CONTAINS(r.output, "(n = " + n);
+  EXPECT_CONTAINS(r.output, " GB");
+  EXPECT_CONTAINS(r.output, "ulimit -v");
+  EXPECT_CONTAINS(r.output, "refused before any work");
+  EXPECT_EQ(r.output.find("bad_alloc"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("subdividing"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("max error"), std::string::npos) << r.output;
+}
+
+#ifdef PANELRAD_ASAN
+#define SKIP_UNDER_ASAN() GTEST_SKIP() << "AddressSanitizer's shadow memory does not fit under ulimit -v"
+#else
+#define SKIP_UNDER_ASAN() (void)0
+#endif
+
+// Cornell box, n0 = 36: level 5 dense is n = 36864, a 10.9 GB matrix.
+TEST(CliMemoryRefusal, DenseSolveUnderAnAddressSpaceLimit) {
+  SKIP_UNDER_ASAN();
+  double s = 0;
+  const CliRun r = run_limited(kSixGB, "solve " + kCornell + " --levels 5 --method dense --formats csv --out " + out_prefix(), &s);
+  std::cout << "[refusal " << s << " s] " << r.output;
+  expect_refused(r, "36864");
+  EXPECT_CONTAINS(r.output, "--method fast");
+}
+
+// Level 10: n = 37,748,736; the cluster tree alone needs 8 GB.
+TEST(CliMemoryRefusal, AutomaticSolveUnderAnAddressSpaceLimit) {
+  SKIP_UNDER_ASAN();
+  double s = 0;
+  const CliRun r = run_limited(kSixGB, "solve " + kCornell + " --levels 10 --formats csv --out " + out_prefix(), &s);
+  std::cout << "[refusal " << s << " s] " << r.output;
+  expect_refused(r, "37748736");
+  EXPECT_CONTAINS(r.output, "cluster tree 8.15 GB");  // ClusterTree::estimate_bytes(36, 10)
+}
+
+TEST(CliMemoryRefusal, CubeLevelElevenUnderAnAddressSpaceLimit) {
+  SKIP_UNDER_ASAN();
+  double s = 0;
+  const CliRun r = run_limited(kSixGB, "cube --levels 11 --min-level 11", &s);
+  std::cout << "[refusal " << s << " s] " << r.output;
+  expect_refused(r, "50331648");
+}
+
+// --levels 12 (levels 0..12): the first level that cannot fit is refused before level 0 runs.
+TEST(CliMemoryRefusal, CubeLevelsAreAllCheckedBeforeLevelZero) {
+  SKIP_UNDER_ASAN();
+  const CliRun r = run_limited(kSixGB, "cube --levels 12");
+  std::cout << "[refusal] " << r.output;
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_CONTAINS(r.output, "every level is checked before the first is solved");
+  EXPECT_EQ(r.output.find("accuracy auto: levels 0"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("max error"), std::string::npos) << r.output;
+}
+
+// Without a limit of our own, level 12 (tree ~43 GB) is beyond this 24 GB machine: refused at
+// once too, with the estimate (skipped on a machine that could hold it).
+TEST(CliMemoryRefusal, CubeLevelTwelveIsRefusedAtOnce) {
+  const CliRun r = run("cube --levels 12");
+  if (r.status == 0) GTEST_SKIP() << "this machine holds level 12";
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_CONTAINS(r.output, "refused before any work");
+  EXPECT_EQ(r.output.find("max error"), std::string::npos) << r.output;
+}
+
+TEST(CliOptions, ThreadsBeyondWhatCanHelpAreAUsageError) {
+  for (const std::string& cmd : {std::string("cube --levels 0"), "solve " + kCornell + " --out /nonexistent-dir/x"}) {
+    const CliRun r = run(cmd + " --threads 1024");
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_CONTAINS(r.output, "--threads 1024 is more than the");
+    EXPECT_EQ(r.output.find("libgomp"), std::string::npos) << r.output;
+  }
+  EXPECT_EQ(run("cube --levels 0 --threads 1").status, 0);
+  EXPECT_EQ(run("cube --levels 0 --threads -1").status, 2);
+}
+
+TEST(CliOptions, CubeRuleIsCheckedAtParseTime) {
+  const CliRun r = run("cube --near quadrature --rule stroud9 --levels 0");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_CONTAINS(r.output, "unknown quadrature rule 'stroud9'");
+  EXPECT_CONTAINS(r.output, "three_point, stroud7 or degreeK");
+  EXPECT_EQ(run("cube --near quadrature --rule degree21 --levels 0").status, 2);  // degrees 1..20
+  EXPECT_EQ(run("cube --near quadrature --rule three_point --levels 0").status, 0);
+  EXPECT_EQ(run("cube --near quadrature --rule degree4 --levels 0").status, 0);
+}
+
+TEST(CliOptions, TolRangeIsShownWithItsRealBounds) {
+  for (const std::string& cmd : {std::string("cube"), "solve " + kCornell}) {
+    const CliRun r = run(cmd + " --tol 1e-20");
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_CONTAINS(r.output, "--tol needs a number in [1e-15, 0.5], got '1e-20'");
+  }
+}
+
+TEST(CliOptions, MaxElementsBelowTheCoarseMeshSaysWhatItDid) {
+  const CliRun r = run("solve " + kCornell + " --max-elements 5 --quiet --formats csv --out " + out_prefix());
+  EXPECT_CONTAINS(r.output, "--max-elements 5 is below the scene's 36 triangles (n0): solving level 0, n = 36");
+  std::filesystem::remove_all(std::filesystem::path(out_prefix()).parent_path());
+}
+
+}  // namespace
