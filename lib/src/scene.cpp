@@ -7,6 +7,7 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
 namespace panelrad {
 
@@ -126,19 +127,29 @@ double Scene::manufactured_emissivity(const Vec3& P, Index facet, const Vec3& nP
   check_finite(u, "manufactured solution", point_name(P, facet));
   const double rho = reflectivity(P, facet);
   if (rho == 0) return u;
-  double Ku = 0;  // (1/pi) Int_S u G dS over the exact surface; coplanar triangles contribute 0
+  // (1/pi) Int_S u G dS over the exact surface. The triangles of P's own facet are coplanar with
+  // P and contribute 0 (section 4.2, case (a)); a triangle of another facet that is coplanar
+  // with P only up to the rounding of the coordinates (a slanted rectangle given as two
+  // triangles) is integrated and gives a value at the rounding level (integrate_kernel_times).
+  double Ku = 0;
   for (std::size_t t = 0; t < mesh_.triangles.size(); ++t) {
     const Index ft = mesh_.facet_of_triangle[t];
     if (ft == facet) continue;
     const auto& tri = mesh_.triangles[t];
     const SurfaceFunction& sol = solution_;
     const auto f = [&sol, ft](const Vec3& Q) { return sol(Q, ft); };
-    Ku += quadrature::integrate_kernel_times(
-              f, P, nP, mesh_.vertices[static_cast<std::size_t>(tri[0])],
-              mesh_.vertices[static_cast<std::size_t>(tri[1])],
-              mesh_.vertices[static_cast<std::size_t>(tri[2])],
-              triangle_inner_normal(static_cast<Index>(t)), solution_tol_)
-              .value;
+    try {
+      Ku += quadrature::integrate_kernel_times(
+                f, P, nP, mesh_.vertices[static_cast<std::size_t>(tri[0])],
+                mesh_.vertices[static_cast<std::size_t>(tri[1])],
+                mesh_.vertices[static_cast<std::size_t>(tri[2])],
+                triangle_inner_normal(static_cast<Index>(t)), solution_tol_)
+                .value;
+    } catch (const std::runtime_error& e) {
+      throw std::runtime_error("manufactured solution: K u at " + point_name(P, facet) +
+                               ", over triangle " + std::to_string(t) + " (facet " +
+                               std::to_string(ft) + ") of " + mesh_.source + ": " + e.what());
+    }
   }
   return u - rho * Ku;
 }

@@ -194,7 +194,13 @@ class KernelEvaluator {
   /// Int_S f G dS (without 1/pi) over S = P + (a, b, c) with the n x n collapsed rule; the
   /// collapsed vertex is the one farthest from P, so that the rule's rows of n points lie
   /// across the side nearest to P.
-  double collapsed(Vec3 a, Vec3 b, Vec3 c, int n, double* l1 = nullptr) {
+  /// `rounding` (optional) receives the scale of the rounding errors of the computed sum:
+  /// sum_k |w_k f(Q_k) h| (|R_k.nP| + |R_k|) / r_k^4 times the area factor. The factor
+  /// (Q - P).nP is a dot product of a rounded R = Q - P with a rounded unit normal, so each
+  /// term carries an absolute error of a few eps |R| |f h| / r^4 whatever |R.nP| is: when the
+  /// piece lies (within rounding) in the plane of P, R.nP is rounding noise of that size, and
+  /// so is every difference of two rules.
+  double collapsed(Vec3 a, Vec3 b, Vec3 c, int n, double* rounding = nullptr) {
     const double da = a.squaredNorm(), db = b.squaredNorm(), dc = c.squaredNorm();
     if (db >= da && db >= dc)
       std::swap(a, b);
@@ -214,16 +220,17 @@ class KernelEvaluator {
         const Vec3 R(row + x[static_cast<std::size_t>(j)] * step);  // Q - P
         const double r2 = R.squaredNorm();
         // f(Q) G(P,Q), paper (2), with (P - Q).nQ = h exactly constant
-        const double term = w[static_cast<std::size_t>(j)] * f_(Vec3(P_ + R)) * R.dot(nP_) / (r2 * r2);
-        s += term;
-        sa += std::abs(term);
+        const double wf = w[static_cast<std::size_t>(j)] * f_(Vec3(P_ + R)) / (r2 * r2);
+        const double RnP = R.dot(nP_);
+        s += wf * RnP;
+        sa += std::abs(wf) * (std::abs(RnP) + std::sqrt(r2));
       }
       sum += w[static_cast<std::size_t>(i)] * xi * s;
       abs_sum += w[static_cast<std::size_t>(i)] * xi * sa;
     }
     evaluations += static_cast<long>(n) * n;
     const double factor = h_ * ba.cross(cb).norm();
-    if (l1) *l1 = std::abs(abs_sum * factor);
+    if (rounding) *rounding = std::abs(abs_sum * factor);
     return sum * factor;
   }
   long evaluations = 0;
@@ -399,6 +406,7 @@ struct Piece {
   Vec3 a, b, c;  // relative to P
   double value = 0, error = 0;
   int order = 0;  // n of the n x n collapsed rule used
+  double rounding = 0;  // rounding scale of the n x n value (KernelEvaluator::collapsed)
   bool operator<(const Piece& o) const { return error < o.error; }
 };
 
@@ -437,9 +445,10 @@ class HierarchicalIntegrator {
       error_ -= e.error;
       l1_ -= std::abs(e.value);
       if (e.order + 2 <= kMaxGauss) {  // p-refinement: the previous rule becomes the low one
-        double l1 = 0;
-        const double high = kernel_.collapsed(e.a, e.b, e.c, e.order + 2, &l1);
-        push(e.a, e.b, e.c, high, std::abs(high - e.value), e.order + 2, l1);
+        double rounding = 0;
+        const double high = kernel_.collapsed(e.a, e.b, e.c, e.order + 2, &rounding);
+        push(e.a, e.b, e.c, high, std::abs(high - e.value), e.order + 2, rounding,
+             std::max(rounding, e.rounding));
       } else {
         refine(e);
       }
@@ -494,21 +503,25 @@ class HierarchicalIntegrator {
                                             (a - c).squaredNorm()}));
     const double q = distance_point_triangle(Vec3::Zero(), a, b, c) / diam;
     const int order = std::max(separated_order(q), min_order);
-    double l1 = 0;
-    const double high = kernel_.collapsed(a, b, c, order, &l1);
-    const double low = kernel_.collapsed(a, b, c, order - 2);
-    push(a, b, c, high, std::abs(high - low), order, l1);
+    double rounding = 0, rounding_low = 0;
+    const double high = kernel_.collapsed(a, b, c, order, &rounding);
+    const double low = kernel_.collapsed(a, b, c, order - 2, &rounding_low);
+    push(a, b, c, high, std::abs(high - low), order, rounding, std::max(rounding, rounding_low));
   }
 
-  // A piece whose estimate is at the rounding level of its sum (100 eps of sum |terms|) cannot
-  // be improved by refinement: it is kept aside (frozen), its estimate still counted.
+  // A piece whose estimate |high - low| is at the rounding level of the two sums (100 eps of
+  // their rounding scales, KernelEvaluator::collapsed) cannot be improved by refinement: it is
+  // kept aside (frozen), its estimate still counted. This is what ends the refinement of a
+  // piece lying in the plane of P within rounding (a triangle coplanar with P's triangle whose
+  // rounded coordinates give h ~ 1e-17 instead of 0): there R.nP, hence every term and every
+  // difference of rules, is rounding noise, and no relative criterion could be met.
   void push(const Vec3& a, const Vec3& b, const Vec3& c, double value, double error, int order,
-            double l1) {
-    if (error <= 100 * std::numeric_limits<double>::epsilon() * l1) {
+            double rounding, double pair_rounding) {
+    if (error <= 100 * std::numeric_limits<double>::epsilon() * pair_rounding) {
       frozen_value_ += value;
       polar_error_ += error;  // not refinable, like the polar pieces
     } else {
-      heap_.push_back({a, b, c, value, error, order});
+      heap_.push_back({a, b, c, value, error, order, rounding});
       std::push_heap(heap_.begin(), heap_.end());
     }
     value_ += value;
@@ -588,10 +601,16 @@ SingularIntegralResult integrate_kernel_times(const std::function<double(const V
   if (!std::isfinite(result.value))
     throw std::runtime_error("integrate_kernel_times: non-finite result (f returned NaN/Inf?) for P = " +
                              vec_str(P));
-  if (evaluations > kMaxEvaluations)
-    throw std::runtime_error("integrate_kernel_times: more than " + std::to_string(kMaxEvaluations) +
-                             " evaluations without reaching rel_tol " + std::to_string(rel_tol) +
-                             " for P = " + vec_str(P));
+  if (evaluations > kMaxEvaluations) {
+    std::ostringstream os;
+    os.precision(3);
+    os << "integrate_kernel_times: more than " << kMaxEvaluations
+       << " evaluations without reaching rel_tol " << rel_tol << " (estimate "
+       << result.error_estimate << " for the value " << result.value
+       << "; is f smooth on the triangle?) for P = " << vec_str(P) << ", triangle " << vec_str(a)
+       << " " << vec_str(b) << " " << vec_str(c);
+    throw std::runtime_error(os.str());
+  }
   return result;
 }
 

@@ -49,6 +49,8 @@ class Scene {
   bool has_manufactured_solution() const { return static_cast<bool>(solution_); }
   const SurfaceFunction& manufactured_solution() const { return solution_; }
   /// E(P) = u(P) - rho(P)/pi Int_S u(Q) G(P,Q) dS_Q for the manufactured solution u, (1).
+  /// std::runtime_error naming the point, its facet and the triangle when the integral cannot
+  /// be computed (u not finite, or not smooth enough to converge within the evaluation cap).
   double manufactured_emissivity(const Vec3& P, Index facet, const Vec3& nP) const;
   /// Largest rho over the facets when given per facet (or constant), else NaN (unknown).
   double max_reflectivity() const;

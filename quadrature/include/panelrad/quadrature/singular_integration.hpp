@@ -29,8 +29,16 @@ struct SingularIntegralResult {
 /// pieces are split; then the piece with the largest estimate is refined (order n+2, or split)
 /// until the summed estimates meet the tolerance. Accurate also when P is within 1e-7 of an edge.
 /// 0 (and 0 evaluations) when P lies exactly in the plane of the triangle (h == 0).
+/// Rounding floor: a piece whose two rules differ by at most 100 eps sum |w f h| (|R.nP| + |R|)
+/// / r^4 (R = Q - P; the computed (Q - P).nP carries an error of a few eps |R| whatever its
+/// value) is not refined further. When P lies in the triangle's plane within rounding (a
+/// slanted planar face given as several triangles with rounded coordinates: h ~ 1e-17 instead
+/// of 0) the integrand is rounding noise; the result is then a value and an estimate at that
+/// rounding level, reached in a few thousand evaluations, instead of an unreachable relative
+/// tolerance.
 /// Errors: std::invalid_argument for an empty f, rel_tol <= 0, non-finite input or a zero-area
-/// triangle; std::runtime_error for a non-finite result or no convergence.
+/// triangle; std::runtime_error for a non-finite result or no convergence within 5e7
+/// evaluations (f not smooth on the triangle), naming P and the triangle.
 SingularIntegralResult integrate_kernel_times(const std::function<double(const Vec3&)>& f,
                                               const Vec3& P, const Vec3& nP, const Vec3& a,
                                               const Vec3& b, const Vec3& c, const Vec3& nQ,
