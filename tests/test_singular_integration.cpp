@@ -160,7 +160,7 @@ TEST(SingularIntegration, CubeEmissivityForConstantSolutionIsOneMinusRho) {
 }
 
 // For u = x^2 + y^2 + z^2 (31): self-convergence. E with rel_tol 1e-9 (the accuracy required
-// guarantees) differs from E with 1e-12 by less than 1e-9 relative at every point.
+// of E) differs from E with 1e-12 by less than 1e-9 relative at every point.
 TEST(SingularIntegration, CubeEmissivitySelfConvergence) {
   const auto u = [](const Vec3& q, panelrad::Index) { return q.squaredNorm(); };
   panelrad::Scene coarse = panelrad::make_paper_cube_scene();
