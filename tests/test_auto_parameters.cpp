@@ -182,3 +182,27 @@ TEST(AutoParameters, FailedSelfCheckTightensTheParameters) {
   EXPECT_LE(rows[0].checked_product_error, panelrad::self_check_threshold(size));
   EXPECT_GT(rows[0].degree, 1);
 }
+
+// The conditioning (auto_parameters.hpp): at rho_max the target delta* shrinks by
+// A = rho_max / (1 - rho_max), which the rule meets as the target of log2 A levels finer; at the
+// cube's rho_max 0.5 (A = 1), and below it, the choice is the one for the cube.
+TEST(AutoParameters, ConditioningAsksForTheTargetOfAFinerLevel) {
+  const Scene cube = make_paper_cube_scene();
+  for (int level = 4; level <= 6; ++level) {
+    const ProblemSize s = problem_size(cube.mesh(), level);
+    EXPECT_EQ(describe_parameters(choose_parameters(s, 0.05, 0.5)), describe_parameters(choose_parameters(s)));
+    EXPECT_EQ(describe_parameters(choose_parameters(s, 0.05, 0.2)), describe_parameters(choose_parameters(s)));
+    // rho_max 0.8: A = 4, two levels finer exactly.
+    EXPECT_EQ(describe_parameters(choose_parameters(s, 0.05, 0.8)),
+              describe_parameters(choose_parameters(problem_size(cube.mesh(), level + 2))));
+  }
+  // rho_max 0.9 at level 4 (lambda_eff 7.17) is stricter than at rho_max 0.5: a higher M at eta 0.4.
+  const OperatorOptions loose = choose_parameters(problem_size(cube.mesh(), 4));
+  const OperatorOptions strict = choose_parameters(problem_size(cube.mesh(), 4), 0.05, 0.9);
+  EXPECT_EQ(strict.method, "fast");
+  EXPECT_LE(strict.eta, loose.eta);
+  EXPECT_GT(strict.degree, loose.degree);
+  // The cube at the sizes the README measures: n = 3072 and 12288 (0.4, 6), 49152 (0.4, 8).
+  EXPECT_EQ(describe_parameters(choose_parameters(problem_size(cube.mesh(), 5))), "fast, exact near field, eta 0.4, M 6");
+  EXPECT_EQ(describe_parameters(choose_parameters(problem_size(cube.mesh(), 6))), "fast, exact near field, eta 0.4, M 8");
+}

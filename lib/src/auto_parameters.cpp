@@ -13,6 +13,9 @@ namespace {
 const double kCubeRelativeH0 = std::sqrt(2.0 / 3.0);
 // Largest n solved densely by the automatic rule (see the header for the evidence).
 constexpr geometry::Index kDenseMaxN = 768;
+// The cube's discretization error relative to ||u||_inf per unit h/diam (Table 1: 3.77e-3 / 3
+// at h/diam 0.0510, 1.92e-3 / 3 at 0.0255).
+constexpr double kDiscretizationErrorPerRelativeH = 0.025;
 // The eta ladder of the sweep, loosest first.
 constexpr double kEtaLadder[] = {0.5, 0.3, 0.2, 0.1};
 }  // namespace
@@ -44,7 +47,14 @@ ProblemSize problem_size(const geometry::TriangleMesh& mesh, int level) {
   return s;
 }
 
-OperatorOptions choose_parameters(const ProblemSize& size, double margin) {
+double conditioning_factor(double rho_max) {
+  if (!(rho_max >= 0 && rho_max < 1))
+    throw std::invalid_argument("conditioning_factor: rho_max = " + std::to_string(rho_max) +
+                                " is outside [0, 1) (the radiosity equation needs rho < 1)");
+  return std::max(1.0, rho_max / (1 - rho_max));  // ||(I-K)^-1|| ||K|| <= rho_max/(1-rho_max), (11)
+}
+
+OperatorOptions choose_parameters(const ProblemSize& size, double margin, double rho_max) {
   if (!(margin >= 0.05) || !std::isfinite(margin))
     throw std::invalid_argument("choose_parameters: margin " + std::to_string(margin) +
                                 " is below the measured 5% (use explicit parameters for a tighter target)");
@@ -52,6 +62,7 @@ OperatorOptions choose_parameters(const ProblemSize& size, double margin) {
   if (!(size.mesh_size > 0) || !(size.diameter > 0) || !std::isfinite(size.mesh_size) ||
       !std::isfinite(size.diameter) || size.mesh_size > size.diameter)
     throw std::invalid_argument("choose_parameters: need 0 < h <= diameter, both finite");
+  const double amplification = conditioning_factor(rho_max);  // validates rho_max for every n
   OperatorOptions o;
   o.near.rule = NearRule::exact;  // no mu to tune; never the limiting error (header)
   if (size.n <= kDenseMaxN) {
@@ -59,25 +70,33 @@ OperatorOptions choose_parameters(const ProblemSize& size, double margin) {
     return o;
   }
   o.method = "fast";
-  const double lambda = size.equivalent_level();
-  if (lambda < 5.5) {  // measured within 5% at cube n = 768..12288, prism n = 1280, 5120
+  // delta* halves per level and shrinks by the amplification: a target log2 A levels finer.
+  const double lambda = size.equivalent_level() + std::log2(amplification);
+  // Each setting while its self-check on the cube (header) stays below delta* = 1.02e-3 2^-lambda.
+  if (lambda < 2.5) {  // check 1.5e-4 (worst: cos 7x + sin(5y) z)
     o.eta = 0.5;
     o.degree = 6;
-  } else if (lambda < 7.5) {  // deviation 1.7e-5 (cube), 3.0e-5 (prism), n-independent; 5% of the
-                              // error: 4.8e-5 at lambda 6, 2.4e-5 at lambda 7 (cube)
+  } else if (lambda < 5.5) {  // check 2.2e-5; deviation 1.3e-5 (cube n = 3072), 3.0e-5 (prism 5120)
     o.eta = 0.4;
     o.degree = 6;
-  } else {  // deviation 2.3e-6 (cube), 4.0e-6 (prism): within 5% up to lambda ~ 10
+  } else if (lambda < 7.5) {  // check 4.1e-6; deviation 1.8e-6 (cube), 4.0e-6 (prism)
     o.eta = 0.4;
     o.degree = 8;
+  } else if (lambda < 10.5) {  // check 3.2e-7; deviation 2.0e-7 (cube n = 3072)
+    o.eta = 0.4;
+    o.degree = 10;
+  } else {  // check 3.8e-8; deviation 3.1e-8 (cube n = 3072); the self-check tightens eta beyond
+    o.eta = 0.4;
+    o.degree = 12;
   }
   return o;
 }
 
-double self_check_threshold(const ProblemSize& size) {
+double self_check_threshold(const ProblemSize& size, double rho_max) {
   if (!(size.mesh_size > 0) || !(size.diameter > 0))
     throw std::invalid_argument("self_check_threshold: mesh size and diameter must be positive");
-  return 8e-3 * size.mesh_size / size.diameter;
+  // 5% of the discretization error scale 0.025 h/diam (Table 1), over the amplification (header).
+  return 0.05 * kDiscretizationErrorPerRelativeH * size.mesh_size / size.diameter / conditioning_factor(rho_max);
 }
 
 OperatorOptions tighten_parameters(const OperatorOptions& options) {

@@ -89,7 +89,8 @@ std::vector<CubeRow> solve_levels(const CubeRunOptions& options, const std::func
     if (const auto* fast = dynamic_cast<const FastOperator*>(K.get())) {
       check_error = fast->self_check().relative_error;
       if (options.tighten_on_failed_check) {
-        const double threshold = self_check_threshold(problem_size(scene.mesh(), level));
+        const double threshold =
+            self_check_threshold(problem_size(scene.mesh(), level), scene.max_reflectivity());
         while (check_error > threshold) {
           const OperatorOptions stricter = tighten_parameters(op);
           if (describe_parameters(stricter) == describe_parameters(op)) break;  // nothing stricter

@@ -4,6 +4,7 @@
 #include <panelrad/quadrature/exact_integrals.hpp>
 #include <panelrad/resources.hpp>
 
+#include <cstdint>
 #include <cstdio>
 #include <limits>
 
@@ -356,60 +357,141 @@ void FastOperator::apply(const Eigen::VectorXd& v, Eigen::VectorXd& y) const {
   }
 }
 
+std::vector<std::pair<std::string, Eigen::VectorXd>> FastOperator::self_check_vectors() const {
+  std::vector<std::pair<std::string, Eigen::VectorXd>> out;
+  if (n_ == 0) return out;
+  const auto elements = tree_->elements();
+  // Coordinates scaled to the bounding box of the collocation points: s in [0, 1]^3.
+  Vec3 lo = point_.front(), hi = point_.front();
+  for (const Vec3& P : point_) {
+    lo = lo.cwiseMin(P);
+    hi = hi.cwiseMax(P);
+  }
+  Vec3 inv_extent;
+  for (int a = 0; a < 3; ++a) inv_extent[a] = hi[a] > lo[a] ? 1.0 / (hi[a] - lo[a]) : 0.0;
+  const auto scaled = [&](Index j) -> Vec3 { return (point_[static_cast<std::size_t>(j)] - lo).cwiseProduct(inv_extent); };
+  const auto make = [&](const std::string& name, auto&& value) {
+    Eigen::VectorXd v(n_);
+    for (Index j = 0; j < n_; ++j) v[j] = value(j);
+    out.emplace_back(name, std::move(v));
+  };
+  make("1", [](Index) { return 1.0; });
+  make("x", [&](Index j) { return scaled(j).x(); });
+  make("x^2 + y^2 + z^2", [&](Index j) { return scaled(j).squaredNorm(); });
+  make("cos 7x + sin(5y) z", [&](Index j) {
+    const Vec3 s = scaled(j);
+    return std::cos(7 * s.x()) + std::sin(5 * s.y()) * s.z();
+  });
+  // Sign per facet from a fixed 64-bit mix of the facet index (splitmix64's finalizer).
+  const auto mix = [](std::uint64_t z) {
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+  };
+  make("+-1 by facet", [&](Index j) {
+    const auto f = static_cast<std::uint64_t>(elements[static_cast<std::size_t>(j)].facet);
+    return (mix(f + 0x9e3779b97f4a7c15ULL) >> 63) ? 1.0 : -1.0;
+  });
+  make("random +-1", [&](Index j) {
+    return (mix(static_cast<std::uint64_t>(j) * 0x9e3779b97f4a7c15ULL + 1) >> 63) ? 1.0 : -1.0;
+  });
+  return out;
+}
+
 // Exact entries of a row are cheap (one closed-form form factor per element, O(n)): compare the
-// fast rows with them for a constant and an oscillating vector.
+// fast rows with them for every test vector (FastSelfCheck in the header).
 FastSelfCheck FastOperator::self_check(int samples) const {
   FastSelfCheck check;
   if (n_ == 0) return check;
-  samples = std::clamp(samples, 1, static_cast<int>(n_));
+  Stopwatch clock;
   const geometry::ClusterTree& tree = *tree_;
   const auto elements = tree.elements();
-  Stopwatch clock;
-  Eigen::VectorXd ones = Eigen::VectorXd::Ones(n_), wave(n_);
-  for (Index j = 0; j < n_; ++j) {  // deterministic, sign-changing, O(1): exercises cancellation
-    const Vec3& Q = point_[static_cast<std::size_t>(j)];
-    wave[j] = std::sin(12.9898 * Q.x() + 78.233 * Q.y() + 37.719 * Q.z() + 0.1 * j);
+  const int L = tree.finest_level();
+  // The rows: every row, or half evenly spaced and half at corners of the input triangles.
+  std::vector<Index> rows;
+  if (samples >= n_) {
+    rows.resize(static_cast<std::size_t>(n_));
+    for (Index i = 0; i < n_; ++i) rows[static_cast<std::size_t>(i)] = i;
+  } else {
+    samples = std::max(samples, 1);
+    const Index even = std::max(1, samples - samples / 2);
+    for (Index k = 0; k < even; ++k)
+      rows.push_back(static_cast<Index>((static_cast<std::int64_t>(k) * n_) / even + (n_ / even) / 2));
+    std::vector<Index> corners;  // elements sharing a vertex with their input triangle (level-0 ancestor)
+    for (Index e = 0; e < n_; ++e) {
+      const Cluster& root = tree.cluster(0, e >> (2 * L));
+      const Cluster& c = elements[static_cast<std::size_t>(e)];
+      bool corner = false;
+      for (const Vec3& p : c.vertex)
+        for (const Vec3& q : root.vertex) corner = corner || p == q;
+      if (corner) corners.push_back(e);
+    }
+    const Index at_corners = std::min<Index>(samples - even, static_cast<Index>(corners.size()));
+    for (Index k = 0; k < at_corners; ++k)
+      rows.push_back(corners[static_cast<std::size_t>((static_cast<std::int64_t>(k) * static_cast<std::int64_t>(corners.size())) / at_corners)]);
+    std::sort(rows.begin(), rows.end());
+    rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
   }
-  std::vector<double> m1, m2;
-  compute_moments(ones, m1);
-  compute_moments(wave, m2);
-  double err = 0, ref = 0;
-  std::vector<double> errs(static_cast<std::size_t>(samples), 0.0), refs(static_cast<std::size_t>(samples), 0.0);
+  const auto vectors = self_check_vectors();
+  const std::size_t V = vectors.size(), S = rows.size();
+  std::vector<std::vector<double>> moments(V);
+  for (std::size_t k = 0; k < V; ++k) compute_moments(vectors[k].second, moments[k]);
+  // v_k(j) and |v_k(j)| interleaved per element: the exact rows' inner loop reads them in order.
+  std::vector<double> values(static_cast<std::size_t>(n_) * 2 * V);
+  for (Index j = 0; j < n_; ++j)
+    for (std::size_t k = 0; k < V; ++k) {
+      values[(static_cast<std::size_t>(j) * V + k) * 2] = vectors[k].second[j];
+      values[(static_cast<std::size_t>(j) * V + k) * 2 + 1] = std::abs(vectors[k].second[j]);
+    }
+  // Per sampled row and vector: (K v)_k exact, (K |v|)_k exact (the scale), (K_fast v)_k.
+  std::vector<double> exact(S * V, 0.0), scale(S * V, 0.0), fast(S * V, 0.0);
 #pragma omp parallel
   {
     std::vector<double> scratch(static_cast<std::size_t>(terms_));
 #pragma omp for schedule(dynamic, 1)
-    for (int k = 0; k < samples; ++k) {
-      const Index i = static_cast<Index>((static_cast<std::int64_t>(k) * n_) / samples + (n_ / samples) / 2);
+    for (std::size_t r = 0; r < S; ++r) {
+      const Index i = rows[r];
       const double rho = rho_[static_cast<std::size_t>(i)];
-      double exact1 = 0, exact2 = 0;
+      double* ex = &exact[r * V];
+      double* sc = &scale[r * V];
       if (rho != 0) {
         const Vec3& P = point_[static_cast<std::size_t>(i)];
         const Vec3& nP = normal_[static_cast<std::size_t>(i)];
         const Index fi = elements[static_cast<std::size_t>(i)].facet;
         for (Index j = 0; j < n_; ++j) {
-          const geometry::Cluster& e = elements[static_cast<std::size_t>(j)];
-          if (e.facet == fi) continue;
+          const Cluster& e = elements[static_cast<std::size_t>(j)];
+          if (e.facet == fi) continue;  // coplanar: G = 0
           const double kij = rho * quadrature::form_factor(P, nP, e.vertex[0], e.vertex[1], e.vertex[2], e.normal);
-          exact1 += kij;
-          exact2 += kij * wave[j];
+          const double* vj = &values[static_cast<std::size_t>(j) * 2 * V];
+          for (std::size_t k = 0; k < V; ++k) {
+            ex[k] += kij * vj[2 * k];
+            sc[k] += kij * vj[2 * k + 1];
+          }
         }
       }
-      const double f1 = apply_row(i, ones, m1, scratch.data()), f2 = apply_row(i, wave, m2, scratch.data());
-      // NaN-aware: a non-finite product is an infinite error, never ignored by max().
-      const double d1 = std::abs(f1 - exact1), d2 = std::abs(f2 - exact2);
-      errs[static_cast<std::size_t>(k)] = std::isfinite(d1) && std::isfinite(d2)
-                                              ? std::max(d1, d2)
-                                              : std::numeric_limits<double>::infinity();
-      refs[static_cast<std::size_t>(k)] = std::max(std::abs(exact1), std::abs(exact2));
+      for (std::size_t k = 0; k < V; ++k) fast[r * V + k] = apply_row(i, vectors[k].second, moments[k], scratch.data());
     }
   }
-  for (int k = 0; k < samples; ++k) {
-    err = std::max(err, errs[static_cast<std::size_t>(k)]);
-    ref = std::max(ref, refs[static_cast<std::size_t>(k)]);
+  check.rows = static_cast<int>(S);
+  check.sampled_rows = rows;
+  for (std::size_t k = 0; k < V; ++k) {
+    SelfCheckVector c;
+    c.name = vectors[k].first;
+    double err = 0, ref = 0;
+    for (std::size_t r = 0; r < S; ++r) {
+      // NaN-aware: a non-finite product is an infinite error, never ignored by max().
+      double d = std::abs(fast[r * V + k] - exact[r * V + k]);
+      if (!std::isfinite(d)) d = std::numeric_limits<double>::infinity();
+      if (c.row < 0 || d > err) {
+        err = d;
+        c.row = rows[r];
+      }
+      ref = std::max(ref, scale[r * V + k]);
+    }
+    c.relative_error = ref > 0 ? err / ref : err;
+    check.relative_error = std::max(check.relative_error, c.relative_error);
+    check.vectors.push_back(std::move(c));
   }
-  check.rows = samples;
-  check.relative_error = ref > 0 ? err / ref : err;
   check.seconds = clock.seconds();
   return check;
 }

@@ -104,9 +104,14 @@ SceneSolution solve_scene_stages(const ChannelScene& scene, const SceneSolveOpti
   if (out.level > 15) throw std::invalid_argument("levels: " + std::to_string(out.level) + " is more than 15");
 
   // The method first, so that a size that cannot fit is refused before any work.
+  // The largest reflectivity over all channels: the conditioning 1 / (1 - rho_max) of every
+  // channel's equation (11), which the automatic product accuracy must honour.
+  double conditioning_rho = 0;
+  for (const std::vector<double>& rho : scene.rho)
+    for (double r : rho) conditioning_rho = std::max(conditioning_rho, r);
   OperatorOptions op;
   if (options.method == "auto") {
-    op = choose_parameters(problem_size(scene.mesh, out.level));
+    op = choose_parameters(problem_size(scene.mesh, out.level), 0.05, conditioning_rho);
   } else if (options.method == "dense" || options.method == "fast") {
     op = options.manual;
     op.method = options.method;
@@ -158,8 +163,9 @@ SceneSolution solve_scene_stages(const ChannelScene& scene, const SceneSolveOpti
   std::unique_ptr<RadiosityOperator> H = make_operator(unit, op);
   if (const auto* fast = dynamic_cast<const FastOperator*>(H.get())) {
     say("fast operator: checking the product on sampled exact rows");
-    out.self_check_threshold = self_check_threshold(problem_size(scene.mesh, out.level));
-    out.self_check_error = fast->self_check().relative_error;
+    out.self_check_threshold = self_check_threshold(problem_size(scene.mesh, out.level), conditioning_rho);
+    out.self_check = fast->self_check();
+    out.self_check_error = out.self_check.relative_error;
     while (options.method == "auto" && !(out.self_check_error <= out.self_check_threshold)) {
       const OperatorOptions stricter = tighten_parameters(op);
       if (describe_parameters(stricter) == describe_parameters(op)) break;  // nothing stricter
@@ -168,7 +174,8 @@ SceneSolution solve_scene_stages(const ChannelScene& scene, const SceneSolveOpti
       ++out.tightened;
       H.reset();  // free the looser operator before building the stricter one
       H = make_operator(unit, op);
-      out.self_check_error = dynamic_cast<const FastOperator&>(*H).self_check().relative_error;
+      out.self_check = dynamic_cast<const FastOperator&>(*H).self_check();
+      out.self_check_error = out.self_check.relative_error;
     }
     if (!(out.self_check_error <= out.self_check_threshold))
       out.warnings.push_back(fmt("the fast product's measured relative error %.2e is above the accepted %.2e "

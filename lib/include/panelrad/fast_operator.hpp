@@ -15,6 +15,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace panelrad {
@@ -47,11 +48,42 @@ struct FastStatistics {
   double far_s = 0;        ///< setup: far-field Taylor coefficients (44)-(45), when stored
 };
 
+/// One test vector of the self-check and its worst error over the sampled rows.
+struct SelfCheckVector {
+  std::string name;            ///< what v is, e.g. "cos 7x + sin(5y) z"
+  double relative_error = 0;   ///< max_k |(K_fast v)_k - (K v)_k| / max_k (K |v|)_k over the sampled rows k
+  geometry::Index row = -1;    ///< the row k where the maximum is attained
+};
+
 /// The operator's own check of its accuracy on sampled rows (exact rows are O(n) each).
+///
+/// What it measures. The solution's error from the product's error: with (I - K) u = E and
+/// (I - K_f) u_f = E, (I - K)(u - u_f) = (K - K_f) u_f, so by (11)
+///     ||u - u_f||_inf <= ||(K - K_f) u_f||_inf / (1 - rho_max).
+/// The check estimates delta = ||(K - K_f) v||_inf / ||K v||_inf for vectors v like the
+/// solution: smooth (constant, linear, quadratic in the coordinates scaled to the bounding box),
+/// oscillating (cos 7x + sin(5y) z, the same scaled coordinates), piecewise constant by facet
+/// (the solution jumps where rho or E changes from facet to facet) and rough (a random +-1
+/// vector with a fixed seed: the worst case of the row sums of |K - K_f|, the operator's
+/// inf-norm). The maximum over the vectors is the check value.
+///
+/// Rows sampled: `samples` rows, half evenly spaced over the element order (which runs facet by
+/// facet), half among the elements at a corner of an input triangle (next to the surface's
+/// edges and corners, where the near field is largest and other facets are nearest); every row
+/// when samples >= n. Deterministic.
+///
+/// Relative to max_k (K |v|)_k over the sampled rows k (inf-norm relative; K >= 0 entrywise, so
+/// this is max_k |(K v)_k| for v >= 0). For a sign-changing v it does not divide by the
+/// cancellations in K v (a random +-1 v has |K v| ~ n^-1/2 K|v|, which would make the check grow
+/// with n without any change in the solution's error); and it is the scale of the bound:
+/// ||(K - K_f) v||_inf <= delta max_k (K|v|)_k <= delta rho_max ||v||_inf, so with v = u_f
+///     ||u - u_f||_inf / ||u_f||_inf <= delta rho_max / (1 - rho_max),
+/// delta the check value (an estimate: sampled rows and vectors like u_f, not a proof).
 struct FastSelfCheck {
-  int rows = 0;                 ///< rows sampled
-  double relative_error = 0;    ///< max |fast - exact| / max |exact| over the sampled rows, for
-                                ///< v = 1 and an oscillating v
+  int rows = 0;                              ///< rows sampled
+  double relative_error = 0;                 ///< max over `vectors` (+inf when a product is not finite)
+  std::vector<SelfCheckVector> vectors;      ///< one entry per test vector, in self_check_vectors() order
+  std::vector<geometry::Index> sampled_rows; ///< the rows compared, ascending
   double seconds = 0;
 };
 
@@ -66,9 +98,13 @@ class FastOperator final : public RadiosityOperator {
   const FastStatistics& statistics() const { return stats_; }
   const FastOptions& options() const { return options_; }
 
-  /// Measures the product's real error on `samples` evenly spaced rows against the exact
-  /// closed-form rows (near field and far field together), for v = 1 and an oscillating v.
+  /// Measures the product's real error on `samples` sampled rows (FastSelfCheck) against the
+  /// exact closed-form rows (near field and far field together), for every self_check_vectors().
   FastSelfCheck self_check(int samples = 32) const;
+
+  /// The test vectors of self_check, with their names: deterministic functions of the
+  /// collocation points (and facets) of this operator.
+  std::vector<std::pair<std::string, Eigen::VectorXd>> self_check_vectors() const;
 
   /// Bytes the operator will hold without far-field coefficients, and the far-field pairs, from
   /// the coverings of up to 256 evenly spaced rows (cheap: no integrals). For refusing sizes that

@@ -66,7 +66,8 @@ struct SceneSolution {
   double mesh_size = 0, diameter = 0;
   std::string method;                  ///< describe_parameters() of the operator that ran
   double self_check_error = -1;        ///< fast operator's measured relative product error; -1: dense
-  double self_check_threshold = 0;
+  double self_check_threshold = 0;     ///< self_check_threshold(size, rho_max over all channels)
+  FastSelfCheck self_check;            ///< the last self-check, per test vector (fast method)
   int tightened = 0;                   ///< times automatic parameters were tightened after a check
   double subdivision_s = 0, operator_s = 0, solve_s = 0, total_s = 0;
   std::size_t operator_bytes = 0;
