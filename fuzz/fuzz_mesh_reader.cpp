@@ -1,4 +1,4 @@
-// libFuzzer target for the mesh reader (issue 5.5): the bytes are read as an OFF file and as an OBJ
+// libFuzzer target for the mesh reader: the bytes are read as an OFF file and as an OBJ
 // file (geometry::read_off / read_obj), and whatever parses is validated
 // (geometry::validate_closed_convex) and, when valid, subdivided once into a cluster tree.
 //

@@ -1,4 +1,4 @@
-// Regression inputs of the mesh-reader fuzzer (fuzz/, issue 5.5): every file under tests/data/fuzz
+// Regression inputs of the mesh-reader fuzzer (fuzz/): every file under tests/data/fuzz
 // (also the fuzzer's seeds) goes through the fuzz target's checks, read as OFF and as OBJ: the
 // only failure allowed is a geometry::MeshError with a message; what parses is a consistent mesh,
 // and a mesh that validates either gives a finite cluster tree or is refused with a MeshError.
@@ -83,6 +83,25 @@ TEST(FuzzRegressions, HugeHeaderCountsAreNotALicenceToAllocate) {
   for (const char* name : {"header_count_2e9.off", "face_count_int_max.off"}) {
     std::istringstream in(slurp(kDir / name));
     EXPECT_THROW(read_off(in, name), MeshError) << name;
+  }
+}
+
+// The bounded reader's decisions on fuzzer-style inputs: a leading UTF-8 byte-order mark is not
+// content (the tetrahedron reads as without it); a NUL byte is binary data even inside a comment
+// (the reader once skipped it there with the comment), refused with its line and byte offset.
+TEST(FuzzRegressions, ByteOrderMarkIsSkippedAndNulIsBinaryEverywhere) {
+  std::istringstream bom(slurp(kDir / "bom_tetrahedron.off"));
+  TriangleMesh m = read_off(bom, "bom_tetrahedron.off");
+  EXPECT_EQ(m.num_facets, 4);
+  EXPECT_TRUE(validate_closed_convex(m).valid);
+  std::istringstream nul(slurp(kDir / "nul_in_comment.obj"));
+  try {
+    read_obj(nul, "nul_in_comment.obj");
+    ADD_FAILURE() << "a NUL byte in a comment was read";
+  } catch (const MeshError& e) {
+    // "v 1 0 0\n" x 4 = 32 bytes, then "# a comment " (12 bytes): offset 44 on line 5, column 13.
+    EXPECT_NE(std::string(e.what()).find("nul_in_comment.obj:5: NUL byte at byte offset 44 (column 13)"), std::string::npos)
+        << e.what();
   }
 }
 

@@ -12,6 +12,7 @@
 #include <sstream>
 #include <string>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace pg = panelrad::geometry;
@@ -118,7 +119,7 @@ TEST(MeshIo, OffErrorsNameLineAndProblem) {
   EXPECT_CONTAINS(error_of([] { off("OFF\nfour 4 6\n"); }), "test.off:2: bad count 'four'");
   EXPECT_CONTAINS(error_of([] { off("hello world\n"); }), "test.off:1: not an OFF file");
   EXPECT_CONTAINS(error_of([] { off(std::string("OFF\n4 4 6\n1 0 \x01\x02\n")); }), "test.off:3: unexpected byte 0x1");
-  EXPECT_CONTAINS(error_of([] { off(std::string("OFF\n4 4 6\n1 0 0\0\n", 17)); }), "unexpected byte 0x0 at column 6");
+  EXPECT_CONTAINS(error_of([] { off(std::string("OFF\n4 4 6\n1 0 0\0\n", 17)); }), "test.off:3: NUL byte at byte offset 15 (column 6)");
   EXPECT_CONTAINS(error_of([] { off("OFF BINARY\n"); }), "binary OFF is not supported");
   EXPECT_CONTAINS(error_of([] { off("4OFF\n"); }), "not supported");
   // Faces: index out of range, too few vertices, bad index, too many trailing values.
@@ -181,7 +182,7 @@ TEST(MeshIo, ObjErrors) {
   EXPECT_CONTAINS(error_of([] { obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/x 2 3\n"); }), "bad vertex reference '1/x'");
   EXPECT_CONTAINS(error_of([] { obj("v 0 0\n"); }), "test.obj:1: vertex 1 has 2 values");
   EXPECT_CONTAINS(error_of([] { obj("v 0 0 nan\n"); }), "test.obj:1: non-finite coordinate 'nan'");
-  EXPECT_CONTAINS(error_of([] { obj("v 0 0 0\ncurv 0 1 1 2\n"); }), "test.obj:2: unknown or unsupported OBJ statement 'curv'");
+  EXPECT_CONTAINS(error_of([] { obj("v 0 0 0\ncurv 0 1 1 2\n"); }), "test.obj:2: unsupported OBJ statement 'curv' (free-form");
   EXPECT_CONTAINS(error_of([] { obj("\x7f\x45LF\x02\x01"); }), "test.obj:1: unexpected byte 0x7f");
 }
 
@@ -224,8 +225,70 @@ TEST(MeshIo, ReadMeshByExtensionAndFileErrors) {
   const std::string empty = write("empty.obj", "");
   EXPECT_CONTAINS(error_of([&] { pg::read_mesh(empty); }), empty + ": empty file");
   // An OFF file given the .obj extension is read as OBJ and refused with the line.
-  EXPECT_CONTAINS(error_of([&] { pg::read_mesh(write("wrong.obj", kTetraOff)); }), "wrong.obj:1: unknown or unsupported OBJ statement 'OFF'");
+  EXPECT_CONTAINS(error_of([&] { pg::read_mesh(write("wrong.obj", kTetraOff)); }), "wrong.obj:1: unknown OBJ statement 'OFF'");
   std::filesystem::remove_all(dir);
+}
+
+// Files that are not regular, too large or binary are refused by the bounded reader, named by the
+// mesh reader's MeshError, without blocking (FIFO) or reading without end (/dev/zero).
+TEST(MeshIo, BoundedReadingOfMeshFiles) {
+  const auto dir = std::filesystem::temp_directory_path() / ("panelrad_mesh_io_bounded_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string fifo = (dir / "pipe.off").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_CONTAINS(error_of([&] { pg::read_mesh(fifo); }), fifo + ": cannot read: is a FIFO (named pipe)");
+  const auto zero = dir / "zero.obj";
+  std::filesystem::create_symlink("/dev/zero", zero);
+  EXPECT_CONTAINS(error_of([&] { pg::read_mesh(zero.string()); }), "zero.obj: cannot read: is a character device");
+  const std::string tetra = (dir / "tetra.off").string();
+  std::ofstream(tetra, std::ios::binary) << kTetraOff;
+  pg::TextReadOptions small;
+  small.max_bytes = kTetraOff.size() - 1;
+  EXPECT_CONTAINS(error_of([&] { pg::read_mesh(tetra, nullptr, small); }),
+                  "tetra.off: cannot read: the file is " + std::to_string(kTetraOff.size()) + " bytes");
+  small.max_bytes = kTetraOff.size();
+  EXPECT_EQ(pg::read_mesh(tetra, nullptr, small).num_facets, 4);
+  std::istringstream in(kTetraOff);
+  small.max_bytes = 10;
+  EXPECT_CONTAINS(error_of([&] { pg::read_off(in, "s.off", nullptr, small); }), "s.off: grew while being read");
+  // A sparse 1 GiB file of NUL bytes: refused at its first byte.
+  const auto zeros = dir / "zeros.obj";
+  std::ofstream(zeros, std::ios::binary).put('\0');
+  std::filesystem::resize_file(zeros, std::uintmax_t{1} << 30);
+  EXPECT_CONTAINS(error_of([&] { pg::read_mesh(zeros.string()); }), "zeros.obj:1: NUL byte at byte offset 0");
+  std::filesystem::remove_all(dir);
+}
+
+// A leading UTF-8 byte-order mark (written by some Windows editors) is not part of the content:
+// OFF and OBJ read the same with and without it, from files and from streams; the same bytes
+// anywhere else are refused with their line.
+TEST(MeshIo, Utf8ByteOrderMarkIsAccepted) {
+  const std::string bom = "\xEF\xBB\xBF";
+  const std::string tetra_obj = "v 1 0 0\nv 0 1 0\nv 0 0 1\nv 1 1 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n";
+  const pg::TriangleMesh plain_off = off(kTetraOff);
+  const pg::TriangleMesh bom_off = off(bom + kTetraOff);
+  EXPECT_EQ(bom_off.vertices, plain_off.vertices);
+  EXPECT_EQ(bom_off.triangles, plain_off.triangles);
+  EXPECT_EQ(obj(bom + tetra_obj).triangles, obj(tetra_obj).triangles);
+  EXPECT_EQ(off(bom + "# comment first\n" + kTetraOff).num_facets, 4);
+  const auto dir = std::filesystem::temp_directory_path() / ("panelrad_mesh_io_bom_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "bom.off", std::ios::binary) << bom << kTetraOff;
+  std::ofstream(dir / "bom.obj", std::ios::binary) << bom << tetra_obj;
+  EXPECT_EQ(pg::read_mesh((dir / "bom.off").string()).triangles, plain_off.triangles);
+  EXPECT_EQ(pg::read_mesh((dir / "bom.obj").string()).num_facets, 4);
+  std::filesystem::remove_all(dir);
+  EXPECT_CONTAINS(error_of([&] { obj("v 0 0 0\n" + bom + "v 1 0 0\n"); }), "test.obj:2: unexpected byte 0xef at column 1");
+}
+
+// OBJ statements are case-sensitive: `V` or `F` read as `v`/`f` or skipped would both be guesses.
+TEST(MeshIo, MiscasedObjStatementsAreErrors) {
+  EXPECT_CONTAINS(error_of([] { obj("v 0 0 0\nV 1 0 0\n"); }),
+                  "test.obj:2: unknown OBJ statement 'V' (OBJ statements are case-sensitive: did you mean 'v'?)");
+  EXPECT_CONTAINS(error_of([] { obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nF 1 2 3\n"); }), "test.obj:4: unknown OBJ statement 'F'");
+  EXPECT_CONTAINS(error_of([] { obj("v 0 0 0\nUSEMTL a\n"); }), "did you mean 'usemtl'?");
+  EXPECT_CONTAINS(error_of([] { obj("v 0 0 0\nfoo 1\n"); }), "test.obj:2: unknown OBJ statement 'foo'");
 }
 
 // The OBJ reader records the material statements it skips for geometry: mtllib files and, per

@@ -1,4 +1,4 @@
-// Scene files (issue 6): OBJ + MTL and OFF + JSON sidecar loading, and every error message.
+// Scene files: OBJ + MTL and OFF + JSON sidecar loading, and every error message.
 #include <panelrad/scene_file.hpp>
 
 #include <gtest/gtest.h>
@@ -6,8 +6,11 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
+#include <vector>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -476,4 +479,189 @@ TEST_F(SceneFile, UnknownKeyIsRejected) {
   EXPECT_CONTAINS(msg, "'Rho'");
   msg = error_of(cube_off(R"({"default": {"rho": 0.5, "e": 0}})"));
   EXPECT_CONTAINS(msg, "'e'");
+}
+
+// ---- bounded reading and strict MTL / JSON -------------------------------------------------------
+
+TEST_F(SceneFile, MtlAndJsonAreReadByTheBoundedReader) {
+  // An MTL that is a FIFO (no writer: opening it for reading would block) and a JSON sidecar that
+  // is /dev/zero (endless) are refused, naming the file and what it is for.
+  const std::string fifo = (dir_ / "cube.mtl").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  std::string msg = error_of(cube_obj({"white", "white", "white", "white", "white", "white"}));
+  EXPECT_CONTAINS(msg, "cube.mtl: cannot read MTL file named by ");
+  EXPECT_CONTAINS(msg, "cube.obj:1: is a FIFO (named pipe), not a regular file");
+  fs::create_symlink("/dev/zero", dir_ / "zero.json");
+  msg = error_of(write("cube.off", kCubeOff), (dir_ / "zero.json").string());
+  EXPECT_CONTAINS(msg, "zero.json: cannot read JSON sidecar of ");
+  EXPECT_CONTAINS(msg, "is a character device");
+  // A NUL byte in an MTL file: its line and byte offset.
+  fs::remove(fifo);
+  write("cube.mtl", std::string("newmtl white\nKd 0.7 0.7 0.7\n\0", 29));
+  EXPECT_CONTAINS(error_of(cube_obj({"white", "white", "white", "white", "white", "white"})),
+                  "cube.mtl:3: NUL byte at byte offset 28 (column 1)");
+}
+
+TEST_F(SceneFile, SizeLimitAppliesToMeshMtlAndJson) {
+  write("cube.mtl", kGoodMtl);
+  const std::string obj = cube_obj({"white", "white", "white", "white", "white", "white"});
+  const std::string off = cube_off(R"({"default": {"rho": 0.5, "E": 0}})");
+  panelrad::geometry::TextReadOptions limit;
+  // The OBJ (about 180 bytes) fits, the MTL (about 240 bytes) does not.
+  limit.max_bytes = fs::file_size(obj);
+  ASSERT_LT(limit.max_bytes, fs::file_size(dir_ / "cube.mtl"));
+  try {
+    load_channel_scene(obj, "", limit);
+    ADD_FAILURE() << "the MTL file above the limit was read";
+  } catch (const SceneFileError& e) {
+    EXPECT_CONTAINS(e.what(), "cube.mtl: cannot read MTL file named by ");
+    EXPECT_CONTAINS(e.what(), "above the limit of " + std::to_string(limit.max_bytes) + " bytes");
+  }
+  limit.max_bytes = 20;  // the OFF itself is above it
+  try {
+    load_channel_scene(off, "", limit);
+    ADD_FAILURE() << "the OFF file above the limit was read";
+  } catch (const SceneFileError& e) {
+    EXPECT_CONTAINS(e.what(), "cube.off: cannot read: the file is ");
+  }
+  limit.max_bytes = fs::file_size(off);  // the OFF fits, the JSON is smaller: both read
+  EXPECT_EQ(load_channel_scene(off, "", limit).mesh.num_facets, 6);
+  write("cube.json", R"({"default": {"rho": 0.5, "E": 0}, "facets": [)" + std::string(300, ' ') + "]}");
+  try {
+    load_channel_scene(off, "", limit);
+    ADD_FAILURE() << "the JSON file above the limit was read";
+  } catch (const SceneFileError& e) {
+    EXPECT_CONTAINS(e.what(), "cube.json: cannot read JSON sidecar of ");
+  }
+}
+
+TEST_F(SceneFile, ByteOrderMarkIsAcceptedInObjMtlOffAndJson) {
+  const std::string bom = "\xEF\xBB\xBF";
+  write("cube.mtl", bom + "newmtl white\nKd 0.7 0.6 0.5\n");
+  std::string text = bom + "mtllib cube.mtl\n" + kCubeVertices;
+  for (int f = 0; f < 6; ++f) text += std::string("usemtl white\n") + kCubeFaces[f] + "\n";
+  const ChannelScene s = load_channel_scene(write("cube.obj", text));
+  EXPECT_EQ(s.rho[1][3], 0.6);
+  write("cube.json", bom + R"({"default": {"rho": 0.25, "E": 1}})");
+  const ChannelScene t = load_channel_scene(write("cube.off", bom + kCubeOff));
+  EXPECT_EQ(t.rho[0][5], 0.25);
+  EXPECT_EQ(t.emission[0][0], 1.0);
+}
+
+TEST_F(SceneFile, MtlStatementGivenTwiceInOneMaterialIsRejected) {
+  write("cube.mtl", "newmtl white\nKd 0.7 0.7 0.7\nNs 10\nKd 0.2 0.2 0.2\n");
+  std::string msg = error_of(cube_obj({"white", "white", "white", "white", "white", "white"}));
+  EXPECT_CONTAINS(msg, "cube.mtl:4: Kd given twice in material 'white' (lines 2 and 4)");
+  write("cube.mtl", "newmtl lamp\nKd 0.5 0.5 0.5\nKe 1 1 1\n\nKe 2 2 2\n");
+  msg = error_of(cube_obj({"lamp", "lamp", "lamp", "lamp", "lamp", "lamp"}));
+  EXPECT_CONTAINS(msg, "cube.mtl:5: Ke given twice in material 'lamp' (lines 3 and 5)");
+  // The same statement in two materials is fine.
+  write("cube.mtl", "newmtl a\nKd 0.1 0.1 0.1\nnewmtl b\nKd 0.2 0.2 0.2\n");
+  EXPECT_EQ(load_channel_scene(cube_obj({"a", "b", "a", "b", "a", "b"})).rho[0][1], 0.2);
+}
+
+// `ke 4 4 4` read as nothing would leave E = 0: a lamp silently dark. Miscased Kd/Ke/newmtl are
+// errors naming the line and the statement meant.
+TEST_F(SceneFile, MiscasedMtlStatementsAreRejected) {
+  const std::vector<std::string> lamp(6, "lamp");
+  write("cube.mtl", "newmtl lamp\nKd 0.5 0.5 0.5\nke 4 4 4\n");
+  EXPECT_CONTAINS(error_of(cube_obj(lamp)),
+                  "cube.mtl:3: unknown MTL statement 'ke': MTL statements are case-sensitive; write 'Ke' (the emission E)");
+  write("cube.mtl", "newmtl lamp\nKD 0.5 0.5 0.5\n");
+  EXPECT_CONTAINS(error_of(cube_obj(lamp)), "cube.mtl:2: unknown MTL statement 'KD'");
+  EXPECT_CONTAINS(error_of(cube_obj(lamp)), "write 'Kd' (the reflectivity rho)");
+  write("cube.mtl", "NewMtl lamp\nKd 0.5 0.5 0.5\n");
+  EXPECT_CONTAINS(error_of(cube_obj(lamp)), "cube.mtl:1: unknown MTL statement 'NewMtl'");
+  write("cube.mtl", "newmtl lamp\nKd 0.5 0.5 0.5\nglow 1\n");
+  EXPECT_CONTAINS(error_of(cube_obj(lamp)), "cube.mtl:3: unknown MTL statement 'glow' (read: newmtl, Kd, Ke;");
+}
+
+// Statements that do not enter diffuse radiosity are read over; a note names the line where that
+// changes what the file means.
+TEST_F(SceneFile, IgnoredMtlStatementsAndTheirNotes) {
+  write("cube.mtl",
+        "newmtl white\nKa 0.1 0.1 0.1\nKd 0.7 0.7 0.7\nKs 0.5 0.5 0.5\nNs 96\nNi 1.45\nd 1\nTr 0\nillum 2\n"
+        "Tf 1 1 1\nPr 0.5\nPm 0\nmap_Bump n.png\nbump n.png\nmap_Ks s.png\n"
+        "newmtl glass\nKd 0.2 0.2 0.2\nd 0.5\nmap_Kd glass.png\nns 10\nmap_Ke glow.png\n");
+  const ChannelScene s = load_channel_scene(cube_obj({"white", "white", "glass", "white", "white", "white"}));
+  EXPECT_EQ(s.rho[0][2], 0.2);
+  EXPECT_EQ(s.rho[0][0], 0.7);
+  std::vector<std::string> mtl_notes;
+  for (const auto& n : s.notes)
+    if (n.find("cube.mtl:") != std::string::npos) mtl_notes.push_back(n);
+  ASSERT_EQ(mtl_notes.size(), 4u) << ::testing::PrintToString(s.notes);
+  EXPECT_CONTAINS(mtl_notes[0], "cube.mtl:18: d 0.5 ignored: material 'glass' is read as opaque");
+  EXPECT_CONTAINS(mtl_notes[1], "cube.mtl:19: map_Kd ignored: a texture is not applied; rho is the constant Kd");
+  EXPECT_CONTAINS(mtl_notes[2], "cube.mtl:20: 'ns' read as 'Ns' and ignored");
+  EXPECT_CONTAINS(mtl_notes[3], "cube.mtl:21: map_Ke ignored: a texture is not applied; E is the constant Ke");
+}
+
+TEST_F(SceneFile, DuplicateJsonKeysAreRejectedWithTheirLines) {
+  std::string msg = error_of(cube_off("{\n  \"default\": {\"rho\": 0.5, \"E\": 0},\n  \"facets\": [\n"
+                                      "    {\"id\": 1, \"E\": 2,\n     \"E\": 3}\n  ]\n}\n"));
+  EXPECT_CONTAINS(msg, "cube.json:5: duplicate key 'E' in facets[0] (lines 4 and 5)");
+  msg = error_of(cube_off("{\"default\": {\"rho\": 0.5, \"E\": 0},\n \"default\": {\"rho\": 0.2, \"E\": 0}}"));
+  EXPECT_CONTAINS(msg, "cube.json:2: duplicate key 'default' at the top level (lines 1 and 2)");
+  msg = error_of(cube_off("{\"default\": {\"rho\": 0.5,\n\n \"rho\": 0.4, \"E\": 0}}"));
+  EXPECT_CONTAINS(msg, "cube.json:3: duplicate key 'rho' in default (lines 1 and 3)");
+  // The same key in different objects is fine.
+  EXPECT_EQ(load_channel_scene(cube_off(R"({"default": {"rho": 0.5, "E": 0},
+      "facets": [{"id": 1, "E": 2}, {"id": 2, "E": 3}]})"))
+                .emission[0][2],
+            3.0);
+}
+
+TEST_F(SceneFile, JsonErrorsNameTheLine) {
+  std::string msg = error_of(cube_off("{\n  \"default\": {\"rho\": 0.5, \"E\": 0},\n  \"facets\": [\n"
+                                      "    {\"id\": 1, \"E\": 2},\n    {\"id\": 2,\n     \"rho\": 1.5}\n  ]\n}\n"));
+  EXPECT_CONTAINS(msg, "cube.json:6: facets[1] (facet 2): rho (channel value) = 1.5 is outside [0, 1)");
+  msg = error_of(cube_off("{\n  \"default\": {\"rho\": 0.5, \"E\": 0},\n  \"facets\": [\n    {\"id\": 9, \"E\": 2}\n  ]\n}\n"));
+  EXPECT_CONTAINS(msg, "cube.json:4: facets[0]: facet 9 is out of range");
+  msg = error_of(cube_off("{\"default\": {\"rho\": 0.5, \"E\": 0},\n\n \"extra\": 1}"));
+  EXPECT_CONTAINS(msg, "cube.json:3: unknown key 'extra'");
+  // A number ends where the next character starts: the line is the number's, not the next one's.
+  msg = error_of(cube_off("{\"default\": {\"rho\": 0.5, \"E\": -1\n}}"));
+  EXPECT_CONTAINS(msg, "cube.json:1: default: E (channel value) = -1 is negative");
+  msg = error_of(cube_off("{\"facets\": [{\"id\": 1, \"rho\": 0.5, \"E\": 0}]}"));
+  EXPECT_CONTAINS(msg, "cube.json: facet 0 has no rho (not listed)");
+}
+
+// E must be 0 or in [1e-100, 1e100] (scene_file.hpp: kMinPositiveEmission, kMaxEmission): a
+// subnormal E has lost precision already; beyond the range the solve's squares and area
+// products would underflow or overflow. rho may not be subnormal either.
+TEST_F(SceneFile, SubnormalAndOverflowingEmissionIsRejected) {
+  EXPECT_EQ(panelrad::kMaxEmission, 1e100);
+  EXPECT_EQ(panelrad::kMinPositiveEmission, 1e-100);
+  const auto json_e = [&](const std::string& e) {
+    return error_of(cube_off(R"({"default": {"rho": 0.5, "E": 0}, "facets": [{"id": 3, "E": )" + e + "}]}"));
+  };
+  std::string msg = json_e("1e-310");
+  EXPECT_CONTAINS(msg, "cube.json:1: facets[0] (facet 3): E (channel value) = 1e-310 is subnormal (below DBL_MIN");
+  msg = json_e("1e-101");
+  EXPECT_CONTAINS(msg, "= 1e-101 is below 1e-100, the smallest non-zero E accepted");
+  msg = json_e("1.5e100");
+  EXPECT_CONTAINS(msg, "= 1.5e+100 is above 1e+100, the largest E accepted");
+  EXPECT_EQ(json_e("1e100"), "");
+  EXPECT_EQ(json_e("1e-100"), "");
+  EXPECT_EQ(json_e("-0.0"), "");
+  // MTL: the material, its line and the facet.
+  write("cube.mtl", "newmtl white\nKd 0.5 0.5 0.5\nnewmtl lamp\nKd 0.5 0.5 0.5\nKe 1 4e-320 1\n");
+  msg = error_of(cube_obj({"white", "lamp", "white", "white", "white", "white"}));
+  EXPECT_CONTAINS(msg, "cube.mtl:5: material 'lamp': E = Ke G = 4e-320 is subnormal");
+  EXPECT_CONTAINS(msg, "facet 1");
+  write("cube.mtl", "newmtl white\nKd 0.5 0.5 0.5\nnewmtl lamp\nKd 0.5 0.5 0.5\nKe 1e200 1 1\n");
+  EXPECT_CONTAINS(error_of(cube_obj({"white", "lamp", "white", "white", "white", "white"})),
+                  "cube.mtl:5: material 'lamp': E = Ke R = 1e+200 is above 1e+100");
+  write("cube.mtl", "newmtl white\nKd 0.5 1e-310 0.5\n");
+  EXPECT_CONTAINS(error_of(cube_obj(std::vector<std::string>(6, "white"))),
+                  "cube.mtl:2: material 'white': rho = Kd G = 1e-310 is subnormal");
+  // The checks themselves, at the edges.
+  EXPECT_EQ(panelrad::emission_problem(0.0), "");
+  EXPECT_EQ(panelrad::emission_problem(1.0), "");
+  EXPECT_NE(panelrad::emission_problem(std::nextafter(1e100, 2e100)), "");
+  EXPECT_NE(panelrad::emission_problem(std::numeric_limits<double>::denorm_min()), "");
+  EXPECT_NE(panelrad::emission_problem(std::numeric_limits<double>::infinity()), "");
+  EXPECT_NE(panelrad::emission_problem(std::nan("")), "");
+  EXPECT_EQ(panelrad::reflectivity_problem(std::numeric_limits<double>::min()), "");
+  EXPECT_NE(panelrad::reflectivity_problem(std::numeric_limits<double>::min() / 2), "");
 }

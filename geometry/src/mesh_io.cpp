@@ -10,6 +10,7 @@
 // error, and coordinates are parsed in single precision. OpenMesh's reader stays as an independent
 // cross-check (read_mesh_with_openmesh, openmesh_io.cpp): both agree on well-formed files.
 #include <panelrad/geometry/mesh_io.hpp>
+#include <panelrad/geometry/text_file.hpp>
 
 #include <algorithm>
 #include <array>
@@ -17,9 +18,7 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <istream>
-#include <iterator>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -43,68 +42,87 @@ std::string show(std::string_view token) {
   return "'" + s + "'";
 }
 
-/// One non-blank line of content (comment removed), split into tokens.
+/// One non-blank line of content (comment removed), split into tokens (views into the text).
 struct Line {
   long number = 0;
   std::vector<std::string_view> tokens;
 };
 
-/// Splits `text` into content lines: '#' starts a comment, blank lines are skipped, bytes that
-/// cannot belong to a text mesh file are refused with their line and column. With
-/// `continuation`, a trailing backslash joins a line with the next (OBJ).
-std::vector<Line> split_lines(const std::string& text, const std::string& name, bool continuation,
-                              std::string& storage) {
-  // Joined OBJ lines need their own storage; string_views point into `storage`.
-  storage = text;
-  std::vector<Line> lines;
-  long number = 0;
-  std::size_t pos = 0;
-  Line pending;
-  bool has_pending = false;
-  while (pos < storage.size()) {
-    std::size_t end = storage.find('\n', pos);
-    if (end == std::string::npos) end = storage.size();
-    ++number;
-    std::string_view line(storage.data() + pos, end - pos);
-    pos = end + 1;
-    const std::size_t hash = line.find('#');
-    if (hash != std::string_view::npos) line = line.substr(0, hash);
+/// The content lines of `text`, one at a time (the text is not copied and no list of all lines is
+/// built, so memory stays at the text plus the mesh): '#' starts a comment, blank lines are
+/// skipped, bytes that cannot belong to a text mesh file are refused with their line and column.
+/// With `continuation`, a trailing backslash joins a line with the next (OBJ).
+class LineCursor {
+ public:
+  LineCursor(std::string_view text, const std::string& name, bool continuation)
+      : text_(text), name_(name), continuation_(continuation) {}
+
+  /// The next content line into `out`; false at the end of the text.
+  bool next(Line& out) {
+    bool continued = false;  // the physical line before ended with a backslash
+    out.tokens.clear();
+    out.number = 0;
+    while (pos_ < text_.size()) {
+      std::size_t end = text_.find('\n', pos_);
+      if (end == std::string_view::npos) end = text_.size();
+      ++number_;
+      std::string_view line = text_.substr(pos_, end - pos_);
+      pos_ = end + 1;
+      const std::size_t hash = line.find('#');
+      if (hash != std::string_view::npos) line = line.substr(0, hash);
+      check_bytes(line);
+      bool continues = false;
+      if (continuation_) {
+        const std::size_t last = line.find_last_not_of(" \t\r\f\v");
+        if (last != std::string_view::npos && line[last] == '\\') {
+          continues = true;
+          line = line.substr(0, last);
+        }
+      }
+      if (!continued) {
+        out.tokens.clear();
+        out.number = number_;
+      }
+      std::size_t i = 0;
+      while (i < line.size()) {
+        while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+        std::size_t j = i;
+        while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
+        if (j > i) out.tokens.push_back(line.substr(i, j - i));
+        i = j;
+      }
+      continued = continues;
+      if (!continues && !out.tokens.empty()) break;
+    }
+    if (out.tokens.empty()) return false;
+    last_content_line_ = out.number;
+    return true;
+  }
+
+  /// The line of the last content line returned (after the end: the file's last content line).
+  long last_content_line() const { return last_content_line_; }
+
+ private:
+  void check_bytes(std::string_view line) const {
     for (std::size_t c = 0; c < line.size(); ++c) {
       const auto b = static_cast<unsigned char>(line[c]);
       const bool ok = (b >= 0x20 && b < 0x7f) || b == '\t' || b == '\r' || b == '\f' || b == '\v';
       if (!ok) {
         std::ostringstream os;
-        os << "unexpected byte 0x" << std::hex << static_cast<int>(b) << std::dec << " at column "
-           << c + 1 << " (binary data or garbage; only text meshes are read)";
-        fail(name, number, os.str());
+        os << "unexpected byte 0x" << std::hex << static_cast<int>(b) << std::dec << " at column " << c + 1
+           << " (binary data or garbage; only text meshes are read)";
+        fail(name_, number_, os.str());
       }
     }
-    bool continues = false;
-    if (continuation) {
-      std::size_t last = line.find_last_not_of(" \t\r\f\v");
-      if (last != std::string_view::npos && line[last] == '\\') {
-        continues = true;
-        line = line.substr(0, last);
-      }
-    }
-    if (!has_pending) {
-      pending = Line{};
-      pending.number = number;
-    }
-    std::size_t i = 0;
-    while (i < line.size()) {
-      while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-      std::size_t j = i;
-      while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
-      if (j > i) pending.tokens.push_back(line.substr(i, j - i));
-      i = j;
-    }
-    has_pending = continues;
-    if (!continues && !pending.tokens.empty()) lines.push_back(std::move(pending));
   }
-  if (has_pending && !pending.tokens.empty()) lines.push_back(std::move(pending));
-  return lines;
-}
+
+  std::string_view text_;
+  const std::string& name_;
+  bool continuation_;
+  std::size_t pos_ = 0;
+  long number_ = 0;
+  long last_content_line_ = 0;
+};
 
 enum class NumberStatus { ok, bad, out_of_range };
 
@@ -230,31 +248,27 @@ bool off_keyword(std::string_view token, const std::string& name, long line) {
 
 TriangleMesh parse_off(const std::string& text, const std::string& name, std::vector<std::string>* notes) {
   if (text.empty()) fail(name, 0, "empty file");
-  std::string storage;
-  const std::vector<Line> lines = split_lines(text, name, false, storage);
-  if (lines.empty()) fail(name, 0, "empty file (no data, only blank lines or comments)");
+  LineCursor cursor(text, name, false);
+  Line l;
+  if (!cursor.next(l)) fail(name, 0, "empty file (no data, only blank lines or comments)");
 
-  std::size_t li = 0;
   std::vector<std::string_view> counts;
-  long counts_line = lines[0].number;
-  if (off_keyword(lines[0].tokens[0], name, lines[0].number)) {
-    counts.assign(lines[0].tokens.begin() + 1, lines[0].tokens.end());
-    ++li;
+  long counts_line = l.number;
+  if (off_keyword(l.tokens[0], name, l.number)) {
+    counts.assign(l.tokens.begin() + 1, l.tokens.end());
     if (!counts.empty() && counts[0] == "BINARY")
-      fail(name, lines[0].number, "binary OFF is not supported; write it as text");
+      fail(name, l.number, "binary OFF is not supported; write it as text");
     if (counts.empty()) {
-      if (li >= lines.size()) fail(name, lines[0].number, "truncated file: nothing after the OFF header");
-      counts = lines[li].tokens;
-      counts_line = lines[li].number;
-      ++li;
+      const long header_line = l.number;
+      if (!cursor.next(l)) fail(name, header_line, "truncated file: nothing after the OFF header");
+      counts = l.tokens;
+      counts_line = l.number;
     }
   } else {
     long long probe = 0;
-    if (!parse_integer(lines[0].tokens[0], probe))
-      fail(name, lines[0].number,
-           "not an OFF file: expected the header 'OFF' or the counts, found " + show(lines[0].tokens[0]));
-    counts = lines[0].tokens;
-    ++li;
+    if (!parse_integer(l.tokens[0], probe))
+      fail(name, l.number, "not an OFF file: expected the header 'OFF' or the counts, found " + show(l.tokens[0]));
+    counts = l.tokens;
   }
   if (counts.size() < 2 || counts.size() > 3)
     fail(name, counts_line,
@@ -269,12 +283,11 @@ TriangleMesh parse_off(const std::string& text, const std::string& name, std::ve
   if (nf == 0) fail(name, counts_line, "empty mesh: the header declares 0 faces");
 
   RawMesh raw;
-  for (long long v = 0; v < nv; ++v, ++li) {
-    if (li >= lines.size())
-      fail(name, lines.back().number,
+  for (long long v = 0; v < nv; ++v) {
+    if (!cursor.next(l))
+      fail(name, cursor.last_content_line(),
            "truncated file: the header (line " + std::to_string(counts_line) + ") declares " +
                std::to_string(nv) + " vertices, the file ends after " + std::to_string(v));
-    const Line& l = lines[li];
     const std::string what = "vertex " + std::to_string(v);
     if (l.tokens.size() < 3)
       fail(name, l.number, what + " has " + std::to_string(l.tokens.size()) + " values, needs x y z");
@@ -288,12 +301,11 @@ TriangleMesh parse_off(const std::string& text, const std::string& name, std::ve
     raw.vertices.push_back(p);
   }
   std::vector<Index> face;
-  for (long long f = 0; f < nf; ++f, ++li) {
-    if (li >= lines.size())
-      fail(name, lines.back().number,
+  for (long long f = 0; f < nf; ++f) {
+    if (!cursor.next(l))
+      fail(name, cursor.last_content_line(),
            "truncated file: the header (line " + std::to_string(counts_line) + ") declares " +
                std::to_string(nf) + " faces, the file ends after " + std::to_string(f));
-    const Line& l = lines[li];
     const std::string what = "face " + std::to_string(f);
     long long k = 0;
     if (!parse_integer(l.tokens[0], k))
@@ -320,10 +332,10 @@ TriangleMesh parse_off(const std::string& text, const std::string& name, std::ve
       any_number(l.tokens[t], name, l.number, (what + " colour").c_str());
     add_face(raw, face, l.number);
   }
-  if (li < lines.size())
-    fail(name, lines[li].number,
+  if (cursor.next(l))
+    fail(name, l.number,
          "unexpected data after the last face (the header declares " + std::to_string(nv) +
-             " vertices and " + std::to_string(nf) + " faces): " + show(lines[li].tokens[0]));
+             " vertices and " + std::to_string(nf) + " faces): " + show(l.tokens[0]));
   return build_mesh(raw, name, notes);
 }
 
@@ -337,12 +349,34 @@ std::string join_from(const std::vector<std::string_view>& tokens, std::size_t f
   return s;
 }
 
+/// Why an OBJ statement is refused: a miscased statement (OBJ is case-sensitive: `V` is not `v`,
+/// and reading it as `v` or skipping it would both be guesses), free-form geometry and other
+/// statements this reader does not implement, or an unknown keyword.
+std::string unknown_obj_statement(std::string_view key) {
+  static const char* const kRead[] = {"v", "vt", "vn", "vp", "f", "l", "p", "o", "g", "s", "usemtl", "mtllib"};
+  static const char* const kUnsupported[] = {"cstype", "deg",    "bmat",    "step",     "curv",       "curv2",
+                                             "surf",   "parm",   "trim",    "hole",     "scrv",       "sp",
+                                             "end",    "con",    "mg",      "bevel",    "c_interp",   "d_interp",
+                                             "lod",    "maplib", "usemap",  "ctech",    "stech",      "shadow_obj",
+                                             "trace_obj", "res",  "call",   "csh"};
+  std::string lower(key);
+  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+  for (const char* k : kRead)
+    if (lower == k)
+      return "unknown OBJ statement " + show(key) + " (OBJ statements are case-sensitive: did you mean '" + k + "'?)";
+  for (const char* k : kUnsupported)
+    if (lower == k)
+      return "unsupported OBJ statement " + show(key) +
+             " (free-form curves and surfaces, and display statements, are not read: only v and f polygons)";
+  return "unknown OBJ statement " + show(key);
+}
+
 TriangleMesh parse_obj(const std::string& text, const std::string& name, std::vector<std::string>* notes,
                        ObjMaterialUse* materials = nullptr) {
   if (text.empty()) fail(name, 0, "empty file");
-  std::string storage;
-  const std::vector<Line> lines = split_lines(text, name, true, storage);
-  if (lines.empty()) fail(name, 0, "empty file (no data, only blank lines or comments)");
+  LineCursor cursor(text, name, true);
+  Line l;
+  if (!cursor.next(l)) fail(name, 0, "empty file (no data, only blank lines or comments)");
 
   RawMesh raw;
   std::vector<long long> pending;  // 1-based or resolved indices, checked against the final count
@@ -350,7 +384,7 @@ TriangleMesh parse_obj(const std::string& text, const std::string& name, std::ve
   std::vector<Index> face;
   std::string usemtl;  // the material in force (materials only)
   long usemtl_line = 0;
-  for (const Line& l : lines) {
+  do {
     const std::string_view key = l.tokens[0];
     if (materials && key == "mtllib") {
       if (l.tokens.size() < 2) fail(name, l.number, "mtllib without a file name");
@@ -420,9 +454,9 @@ TriangleMesh parse_obj(const std::string& text, const std::string& name, std::ve
                key == "g" || key == "s" || key == "usemtl" || key == "mtllib") {
       continue;  // texture coordinates, normals, lines, points, grouping and materials: not geometry here
     } else {
-      fail(name, l.number, "unknown or unsupported OBJ statement " + show(key));
+      fail(name, l.number, unknown_obj_statement(key));
     }
-  }
+  } while (cursor.next(l));
   if (raw.vertices.empty()) fail(name, 0, "empty mesh: no vertices ('v' lines)");
   if (raw.face_lines.empty()) fail(name, 0, "empty mesh: no faces ('f' lines)");
   const auto nv = static_cast<long long>(raw.vertices.size());
@@ -433,20 +467,25 @@ TriangleMesh parse_obj(const std::string& text, const std::string& name, std::ve
   return build_mesh(raw, name, notes);
 }
 
-std::string read_all(std::istream& in, const std::string& name) {
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) fail(name, 0, "read error");
-  return text;
+/// The bounded reader (text_file.hpp) with its errors as MeshError.
+std::string read_all(std::istream& in, const std::string& name, const TextReadOptions& options) {
+  try {
+    return read_text_stream(in, name, options);
+  } catch (const TextFileError& e) {
+    throw MeshError(e.what());
+  }
 }
 
 }  // namespace
 
-TriangleMesh read_off(std::istream& in, const std::string& name, std::vector<std::string>* notes) {
-  return parse_off(read_all(in, name), name, notes);
+TriangleMesh read_off(std::istream& in, const std::string& name, std::vector<std::string>* notes,
+                      const TextReadOptions& options) {
+  return parse_off(read_all(in, name, options), name, notes);
 }
 
-TriangleMesh read_obj(std::istream& in, const std::string& name, std::vector<std::string>* notes) {
-  return parse_obj(read_all(in, name), name, notes);
+TriangleMesh read_obj(std::istream& in, const std::string& name, std::vector<std::string>* notes,
+                      const TextReadOptions& options) {
+  return parse_obj(read_all(in, name, options), name, notes);
 }
 
 namespace {
@@ -456,34 +495,36 @@ std::string lower_extension(const std::string& path) {
   return ext;
 }
 
-/// The whole text of an .off or .obj file (by extension, case-insensitive).
-std::string read_mesh_file(const std::string& path) {
+/// The whole text of an .off or .obj file (by extension, case-insensitive), read by the bounded
+/// reader (text_file.hpp: regular files only, size limit, no NUL byte, byte-order mark removed).
+std::string read_mesh_file(const std::string& path, const TextReadOptions& options) {
   namespace fs = std::filesystem;
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
   if (ec || !fs::exists(status)) fail(path, 0, "cannot open: no such file");
-  if (fs::is_directory(status)) fail(path, 0, "cannot read: is a directory");
   const std::string ext = lower_extension(path);
-  if (ext != ".off" && ext != ".obj")
+  if (!fs::is_directory(status) && ext != ".off" && ext != ".obj")
     fail(path, 0, "unknown mesh format " + show(ext.empty() ? std::string("(no extension)") : ext) +
                       ": expected .off or .obj");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, 0, "cannot open for reading");
-  return read_all(in, path);
+  try {
+    return read_text_file(path, "", options);
+  } catch (const TextFileError& e) {
+    throw MeshError(e.what());
+  }
 }
 
 bool is_off(const std::string& path) { return lower_extension(path) == ".off"; }
 }  // namespace
 
-TriangleMesh read_mesh(const std::string& path, std::vector<std::string>* notes) {
-  const std::string text = read_mesh_file(path);
+TriangleMesh read_mesh(const std::string& path, std::vector<std::string>* notes, const TextReadOptions& options) {
+  const std::string text = read_mesh_file(path, options);
   return is_off(path) ? parse_off(text, path, notes) : parse_obj(text, path, notes);
 }
 
 TriangleMesh read_obj_with_materials(const std::string& path, ObjMaterialUse& materials,
-                                     std::vector<std::string>* notes) {
-  const std::string text = read_mesh_file(path);
+                                     std::vector<std::string>* notes, const TextReadOptions& options) {
   if (is_off(path)) fail(path, 0, "an OFF file has no materials: expected an .obj file");
+  const std::string text = read_mesh_file(path, options);
   materials = ObjMaterialUse{};
   return parse_obj(text, path, notes, &materials);
 }

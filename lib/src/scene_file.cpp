@@ -1,7 +1,8 @@
-// Scene files (issue 6): a validated closed convex mesh with rho and E per input facet, in one or
-// more channels, from OBJ + MTL or OFF + JSON sidecar. Every error names the file and the line or
-// facet; nothing is returned partially.
+// Scene files: a validated closed convex mesh with rho and E per input facet (the data of the
+// radiosity equation, paper (7)), in one or more channels, from OBJ + MTL or OFF + JSON sidecar.
+// Every error names the file and the line or facet; nothing is returned partially.
 #include <panelrad/geometry/mesh_io.hpp>
+#include <panelrad/geometry/text_file.hpp>
 #include <panelrad/geometry/validation.hpp>
 #include <panelrad/scene_file.hpp>
 
@@ -11,14 +12,15 @@
 #include <array>
 #include <cctype>
 #include <charconv>
+#include <cfloat>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iterator>
 #include <map>
 #include <optional>
 #include <set>
 #include <system_error>
+#include <unordered_map>
 
 namespace panelrad {
 namespace {
@@ -47,17 +49,14 @@ std::string lower_extension(const std::string& path) {
   return ext;
 }
 
-/// The whole file; `role` says what it is for in messages ("MTL file named by x.obj:3").
-std::string read_text(const std::string& path, const std::string& role) {
-  std::error_code ec;
-  const fs::file_status status = fs::status(path, ec);
-  if (ec || !fs::exists(status)) fail(path, 0, "cannot open " + role + ": no such file");
-  if (fs::is_directory(status)) fail(path, 0, "cannot read " + role + ": is a directory");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, 0, "cannot open " + role + " for reading");
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) fail(path, 0, "read error in " + role);
-  return text;
+/// The whole file, by the bounded reader (text_file.hpp: regular files only, size limit, no NUL
+/// byte); `role` says what it is for in messages ("MTL file named by x.obj:3").
+std::string read_text(const std::string& path, const std::string& role, const geometry::TextReadOptions& options) {
+  try {
+    return geometry::read_text_file(path, role, options);
+  } catch (const geometry::TextFileError& e) {
+    throw SceneFileError(e.what());
+  }
 }
 
 /// One non-blank content line, split into tokens.
@@ -100,20 +99,16 @@ std::string join_from(const std::vector<std::string>& tokens, std::size_t first)
 }
 
 /// Checks one value of rho or E; returns what is wrong, or "" when fine.
-std::string value_problem(bool is_rho, double v) {
-  if (!std::isfinite(v)) return "is not a finite number";
-  if (is_rho && !(v >= 0.0 && v < 1.0)) return "is outside [0, 1) (paper (7): 0 <= rho < 1)";
-  if (!is_rho && v < 0.0) return "is negative (emission E must be >= 0)";
-  return "";
-}
+std::string value_problem(bool is_rho, double v) { return is_rho ? reflectivity_problem(v) : emission_problem(v); }
 
 /// Reads and validates the mesh; notes get the reader's and the validator's notes. For an OBJ,
 /// `materials` (when given) gets its mtllib and per-face usemtl statements.
 geometry::TriangleMesh load_mesh(const std::string& path, std::vector<std::string>& notes,
-                                 geometry::ObjMaterialUse* materials = nullptr) {
+                                 const geometry::TextReadOptions& options, geometry::ObjMaterialUse* materials = nullptr) {
   geometry::TriangleMesh mesh;
   try {
-    mesh = materials ? geometry::read_obj_with_materials(path, *materials, &notes) : geometry::read_mesh(path, &notes);
+    mesh = materials ? geometry::read_obj_with_materials(path, *materials, &notes, options)
+                     : geometry::read_mesh(path, &notes, options);
   } catch (const geometry::MeshError& e) {
     throw SceneFileError(e.what());
   }
@@ -135,6 +130,19 @@ struct Material {
   long ke_line = 0;
 };
 
+/// MTL statements that do not enter diffuse radiosity and are read over: ambient, specular and
+/// transmission colours, specular exponent, refraction index, dissolve, illumination model, bump,
+/// displacement and reflection maps, and the PBR extension (roughness, metallic, sheen,
+/// clearcoat, anisotropy, normal map). Texture maps (map_*) are recognised by their prefix.
+constexpr const char* kIgnoredMtl[] = {"Ka",  "Ks", "Ns", "Ni",  "d",   "Tr",    "Tf",     "illum", "sharpness",
+                                       "bump", "disp", "decal", "refl", "Pr", "Pm", "Ps", "Pc", "Pcr",
+                                       "aniso", "anisor", "norm"};
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
 /// "Kd r g b" / "Ke r g b": exactly three numbers (a single grey value is not standard MTL).
 std::array<double, 3> colour(const Line& l, const std::string& file) {
   const std::string& key = l.tokens[0];
@@ -155,14 +163,24 @@ std::array<double, 3> colour(const Line& l, const std::string& file) {
   return c;
 }
 
-/// Parses one MTL file into `materials` (name -> material).
+/// Parses one MTL file into `materials` (name -> material). MTL statements are case-sensitive:
+/// newmtl, Kd (rho) and Ke (E) are read; a statement given twice in one material, a miscased
+/// newmtl/Kd/Ke (`kd`, `KE`: read as nothing they would silently leave rho or E at another value)
+/// and an unknown statement are errors naming the line; the statements in kIgnoredMtl and texture
+/// maps are read over, with a note where ignoring them changes what the file means (map_Kd,
+/// map_Ke: textured rho or E; d < 1 or Tr > 0: a transparent surface, while the radiosity equation
+/// has opaque ones; a miscased ignored statement).
 void parse_mtl(const std::string& path, const std::string& role, std::map<std::string, Material>& materials,
-               std::size_t& defined) {
-  const std::string text = read_text(path, role);
+               std::size_t& defined, std::vector<std::string>& notes, const geometry::TextReadOptions& options) {
+  const std::string text = read_text(path, role, options);
   Material* current = nullptr;
   std::string current_name;
+  const auto note = [&](long line, const std::string& what) {
+    notes.push_back(path + ":" + std::to_string(line) + ": " + what);
+  };
   for (const Line& l : split_lines(text)) {
     const std::string& key = l.tokens[0];
+    const std::string key_lower = lower(key);
     if (key == "newmtl") {
       if (l.tokens.size() < 2) fail(path, l.number, "newmtl without a material name");
       current_name = join_from(l.tokens, 1);
@@ -174,6 +192,11 @@ void parse_mtl(const std::string& path, const std::string& role, std::map<std::s
       ++defined;
     } else if (key == "Kd" || key == "Ke") {
       if (!current) fail(path, l.number, key + " before any newmtl");
+      const long first = key == "Kd" ? current->kd_line : current->ke_line;
+      if (first > 0)
+        fail(path, l.number, key + " given twice in material " + in_quotes(current_name) + " (lines " +
+                                 std::to_string(first) + " and " + std::to_string(l.number) +
+                                 "): which one is meant is not clear");
       const std::array<double, 3> c = colour(l, path);
       if (key == "Kd") {
         current->kd = c;
@@ -182,15 +205,41 @@ void parse_mtl(const std::string& path, const std::string& role, std::map<std::s
         current->ke = c;
         current->ke_line = l.number;
       }
+    } else if (key_lower == "newmtl" || key_lower == "kd" || key_lower == "ke") {
+      const std::string meant = key_lower == "newmtl" ? "newmtl" : key_lower == "kd" ? "Kd" : "Ke";
+      fail(path, l.number, "unknown MTL statement " + in_quotes(key) + ": MTL statements are case-sensitive; write " +
+                               in_quotes(meant) + (meant == "Kd"   ? " (the reflectivity rho)"
+                                                   : meant == "Ke" ? " (the emission E)"
+                                                                   : ""));
+    } else if (key_lower.rfind("map_", 0) == 0) {
+      if (key_lower == "map_kd" || key_lower == "map_ke")
+        note(l.number, key + " ignored: a texture is not applied; " +
+                           (key_lower == "map_kd" ? "rho is the constant Kd" : "E is the constant Ke") +
+                           " of material " + in_quotes(current_name));
+    } else {
+      const auto known = std::find_if(std::begin(kIgnoredMtl), std::end(kIgnoredMtl),
+                                      [&](const char* k) { return key_lower == lower(k); });
+      if (known == std::end(kIgnoredMtl))
+        fail(path, l.number, "unknown MTL statement " + in_quotes(key) +
+                                 " (read: newmtl, Kd, Ke; read over: Ka, Ks, Ns, Ni, d, Tr, Tf, illum, map_*, bump, ...)");
+      if (key != *known) note(l.number, in_quotes(key) + " read as " + in_quotes(*known) + " and ignored");
+      double value = 0;
+      if ((*known == std::string("d") || *known == std::string("Tr")) && l.tokens.size() == 2) {
+        const std::string& tok = l.tokens[1];
+        const auto [ptr, ec] = std::from_chars(tok.data(), tok.data() + tok.size(), value);
+        const bool transparent = *known == std::string("d") ? value < 1.0 : value > 0.0;
+        if (ec == std::errc() && ptr == tok.data() + tok.size() && transparent)
+          note(l.number, key + " " + tok + " ignored: material " + in_quotes(current_name) +
+                             " is read as opaque (the radiosity equation has no transmission)");
+      }
     }
-    // Ka, Ks, Ns, Ni, d, Tr, illum, map_*, ...: not radiosity data, ignored.
   }
 }
 
-ChannelScene load_obj_scene(const std::string& path) {
+ChannelScene load_obj_scene(const std::string& path, const geometry::TextReadOptions& options) {
   ChannelScene scene;
   geometry::ObjMaterialUse use;  // mtllib and per-face usemtl, as the reader counted the faces
-  scene.mesh = load_mesh(path, scene.notes, &use);
+  scene.mesh = load_mesh(path, scene.notes, options, &use);
   const auto nf = static_cast<std::size_t>(scene.mesh.num_facets);
   if (use.face_material.size() != nf)
     fail(path, 0, "internal error: " + std::to_string(use.face_material.size()) + " faces but the mesh has " +
@@ -213,7 +262,7 @@ ChannelScene load_obj_scene(const std::string& path) {
   std::size_t defined = 0;
   std::string library_names;
   for (const auto& [lib, line] : libraries) {
-    parse_mtl(lib, "MTL file named by " + path + ":" + std::to_string(line), materials, defined);
+    parse_mtl(lib, "MTL file named by " + path + ":" + std::to_string(line), materials, defined, scene.notes, options);
     library_names += (library_names.empty() ? "" : ", ") + fs::path(lib).filename().string();
   }
 
@@ -258,19 +307,134 @@ ChannelScene load_obj_scene(const std::string& path) {
 // ---------------------------------------------------------------------------------------------
 // OFF + JSON sidecar
 
+/// A character iterator over the JSON text that records how far nlohmann's lexer has read: the
+/// parser callback then knows where each key and value ends, and so its line.
+class TrackedChar {
+ public:
+  using iterator_category = std::input_iterator_tag;
+  using value_type = char;
+  using difference_type = std::ptrdiff_t;
+  using pointer = const char*;
+  using reference = const char&;
+  TrackedChar(const char* p, const char** read) : p_(p), read_(read) {}
+  reference operator*() const { return *p_; }
+  TrackedChar& operator++() {
+    *read_ = ++p_;
+    return *this;
+  }
+  TrackedChar operator++(int) {
+    TrackedChar before = *this;
+    ++*this;
+    return before;
+  }
+  friend bool operator==(const TrackedChar& a, const TrackedChar& b) { return a.p_ == b.p_; }
+
+ private:
+  const char* p_;
+  const char** read_;
+};
+
+/// Where things are in the JSON sidecar: the line of each value down to the facet entries' keys
+/// ("facets[3].rho"; array elements inside those are not recorded, which keeps a large sidecar
+/// cheap), and the first duplicate key. JSON allows duplicate keys but does not say which value
+/// counts (nlohmann keeps the last): a duplicate is an error here.
+struct JsonLayout {
+  std::unordered_map<std::string, long> line_of;
+  std::string duplicate;  ///< message for the first duplicate key; empty when none
+  long duplicate_line = 0;
+
+  long line(const std::string& path) const {
+    const auto it = line_of.find(path);
+    return it == line_of.end() ? 0 : it->second;
+  }
+};
+
+/// Parses the JSON text, filling `layout`. Throws nlohmann's exceptions for bad JSON.
+Json parse_json(const std::string& text, JsonLayout& layout) {
+  const char* read = text.data();  // one past the last character the lexer has taken
+  long line = 1;                   // the line of text[counted - 1]
+  const char* counted = text.data();
+  // The line of the character before `end` (the last one of the token just read).
+  const auto line_before = [&](const char* end) {
+    if (end > text.data()) --end;
+    if (end < counted) return line;  // the lexer never goes back; keep what is counted
+    line += static_cast<long>(std::count(counted, end, '\n'));
+    counted = end;
+    return line;
+  };
+  struct Frame {
+    bool is_array = false;
+    std::string path;
+    std::size_t next_index = 0;
+    std::string key;
+    std::map<std::string, long> key_lines;
+  };
+  std::vector<Frame> stack;
+  constexpr std::size_t kRecordedDepth = 3;  // root object, "facets" array, facet entry
+  // The path of a value that starts now inside the innermost container.
+  const auto child_path = [&]() -> std::string {
+    if (stack.empty()) return "";
+    Frame& parent = stack.back();
+    if (parent.is_array) return parent.path + "[" + std::to_string(parent.next_index++) + "]";
+    return parent.path.empty() ? parent.key : parent.path + "." + parent.key;
+  };
+  const auto record = [&](const std::string& path, long at) {
+    if (stack.size() <= kRecordedDepth && !path.empty()) layout.line_of.emplace(path, at);
+  };
+  const Json::parser_callback_t callback = [&](int, nlohmann::json::parse_event_t event, Json& parsed) {
+    using Event = nlohmann::json::parse_event_t;
+    switch (event) {
+      case Event::object_start:
+      case Event::array_start: {
+        const long at = line_before(read);
+        const std::string path = child_path();
+        record(path, at);
+        stack.push_back(Frame{event == Event::array_start, path, 0, "", {}});
+        break;
+      }
+      case Event::object_end:
+      case Event::array_end:
+        if (!stack.empty()) stack.pop_back();
+        break;
+      case Event::key: {
+        const long at = line_before(read);
+        Frame& object = stack.back();
+        object.key = parsed.get<std::string>();
+        const auto [it, inserted] = object.key_lines.try_emplace(object.key, at);
+        if (!inserted && layout.duplicate.empty())
+          layout.duplicate = "duplicate key " + in_quotes(object.key) +
+                             (object.path.empty() ? std::string(" at the top level") : " in " + object.path) +
+                             " (lines " + std::to_string(it->second) + " and " + std::to_string(at) +
+                             "): a JSON object's keys must be unique (the later value would silently replace "
+                             "the earlier)";
+        if (!inserted && layout.duplicate_line == 0) layout.duplicate_line = at;
+        break;
+      }
+      case Event::value: {
+        // A number is ended by the character after it, which the lexer has read already.
+        const long at = line_before(parsed.is_number() && read > text.data() ? read - 1 : read);
+        record(child_path(), at);
+        break;
+      }
+    }
+    return true;
+  };
+  return Json::parse(TrackedChar(text.data(), &read), TrackedChar(text.data() + text.size(), &read), callback);
+}
+
 /// A value for all channels: a number, or an array of one number per channel.
-std::vector<double> channel_values(const Json& v, std::size_t channels, const std::string& file,
+std::vector<double> channel_values(const Json& v, std::size_t channels, const std::string& file, long line,
                                    const std::string& where) {
   if (v.is_number()) return std::vector<double>(channels, v.get<double>());
   if (!v.is_array())
-    fail(file, 0, where + " is " + v.dump() + ": expected a number" +
+    fail(file, line, where + " is " + v.dump() + ": expected a number" +
                       (channels > 1 ? " or an array of " + std::to_string(channels) + " numbers (one per channel)" : ""));
   if (v.size() != channels)
-    fail(file, 0, where + " has " + std::to_string(v.size()) + " values, expected " + std::to_string(channels) +
+    fail(file, line, where + " has " + std::to_string(v.size()) + " values, expected " + std::to_string(channels) +
                       " (one per channel)");
   std::vector<double> out;
   for (std::size_t c = 0; c < channels; ++c) {
-    if (!v[c].is_number()) fail(file, 0, where + "[" + std::to_string(c) + "] is " + v[c].dump() + ": not a number");
+    if (!v[c].is_number()) fail(file, line, where + "[" + std::to_string(c) + "] is " + v[c].dump() + ": not a number");
     out.push_back(v[c].get<double>());
   }
   return out;
@@ -278,18 +442,19 @@ std::vector<double> channel_values(const Json& v, std::size_t channels, const st
 
 /// Checks rho or E values of `where`; `channel_names` for messages.
 void check_values(const std::vector<double>& values, bool is_rho, const std::vector<std::string>& channel_names,
-                  const std::string& file, const std::string& where) {
+                  const std::string& file, long line, const std::string& where) {
   for (std::size_t c = 0; c < values.size(); ++c) {
     const std::string problem = value_problem(is_rho, values[c]);
     if (!problem.empty())
-      fail(file, 0, where + ": " + (is_rho ? "rho" : "E") + " (channel " + channel_names[c] + ") = " +
+      fail(file, line, where + ": " + (is_rho ? "rho" : "E") + " (channel " + channel_names[c] + ") = " +
                         number(values[c]) + " " + problem);
   }
 }
 
-ChannelScene load_off_scene(const std::string& path, const std::string& materials_path) {
+ChannelScene load_off_scene(const std::string& path, const std::string& materials_path,
+                            const geometry::TextReadOptions& options) {
   ChannelScene scene;
-  scene.mesh = load_mesh(path, scene.notes);
+  scene.mesh = load_mesh(path, scene.notes, options);
   const auto nf = static_cast<std::size_t>(scene.mesh.num_facets);
 
   const std::string file =
@@ -301,28 +466,37 @@ ChannelScene load_off_scene(const std::string& path, const std::string& material
                         (materials_path.empty() ? " (the OFF's path with extension .json)" : ""));
   }
   Json doc;
-  try {
-    doc = Json::parse(read_text(file, "JSON sidecar of " + path));
-  } catch (const Json::parse_error& e) {
-    fail(file, 0, "JSON parse error at byte " + std::to_string(e.byte) + ": " + e.what());
-  } catch (const Json::exception& e) {  // e.g. a number too large for a double
-    fail(file, 0, std::string("JSON error: ") + e.what());
+  JsonLayout layout;
+  {
+    geometry::TextReadOptions json_options = options;
+    json_options.strip_utf8_bom = false;  // nlohmann skips it; byte positions stay the file's
+    const std::string text = read_text(file, "JSON sidecar of " + path, json_options);
+    try {
+      doc = parse_json(text, layout);
+    } catch (const Json::parse_error& e) {
+      fail(file, 0, "JSON parse error at byte " + std::to_string(e.byte) + ": " + e.what());
+    } catch (const Json::exception& e) {  // e.g. a number too large for a double
+      fail(file, 0, std::string("JSON error: ") + e.what());
+    }
   }
+  if (!layout.duplicate.empty()) fail(file, layout.duplicate_line, layout.duplicate);
+  const auto line = [&](const std::string& where) { return layout.line(where); };
   if (!doc.is_object()) fail(file, 0, "expected a JSON object with \"channels\", \"default\", \"facets\"");
   for (const auto& [key, value] : doc.items())
     if (key != "channels" && key != "default" && key != "facets")
-      fail(file, 0, "unknown key " + in_quotes(key) + " (expected \"channels\", \"default\", \"facets\")");
+      fail(file, line(key), "unknown key " + in_quotes(key) + " (expected \"channels\", \"default\", \"facets\")");
 
   // Channels.
   if (doc.contains("channels")) {
     const Json& ch = doc["channels"];
-    if (!ch.is_array() || ch.empty()) fail(file, 0, "\"channels\" must be a non-empty array of names");
+    if (!ch.is_array() || ch.empty()) fail(file, line("channels"), "\"channels\" must be a non-empty array of names");
     for (std::size_t c = 0; c < ch.size(); ++c) {
+      const std::string at = "channels[" + std::to_string(c) + "]";
       if (!ch[c].is_string() || ch[c].get<std::string>().empty())
-        fail(file, 0, "channels[" + std::to_string(c) + "] is " + ch[c].dump() + ": expected a non-empty name");
+        fail(file, line(at), at + " is " + ch[c].dump() + ": expected a non-empty name");
       const std::string name = ch[c].get<std::string>();
       if (std::find(scene.channels.begin(), scene.channels.end(), name) != scene.channels.end())
-        fail(file, 0, "channel " + in_quotes(name) + " is named twice");
+        fail(file, line(at), "channel " + in_quotes(name) + " is named twice");
       scene.channels.push_back(name);
     }
   } else {
@@ -334,12 +508,14 @@ ChannelScene load_off_scene(const std::string& path, const std::string& material
   std::optional<std::vector<double>> default_rho, default_e;
   if (doc.contains("default")) {
     const Json& d = doc["default"];
-    if (!d.is_object()) fail(file, 0, "\"default\" is " + d.dump() + ": expected an object {\"rho\": .., \"E\": ..}");
+    if (!d.is_object())
+      fail(file, line("default"), "\"default\" is " + d.dump() + ": expected an object {\"rho\": .., \"E\": ..}");
     for (const auto& [key, value] : d.items()) {
+      const long at = line("default." + key);
       if (key != "rho" && key != "E")
-        fail(file, 0, "unknown key " + in_quotes(key) + " in \"default\" (expected \"rho\", \"E\")");
-      std::vector<double> v = channel_values(value, nc, file, "default " + key);
-      check_values(v, key == "rho", scene.channels, file, "default");
+        fail(file, at, "unknown key " + in_quotes(key) + " in \"default\" (expected \"rho\", \"E\")");
+      std::vector<double> v = channel_values(value, nc, file, at, "default " + key);
+      check_values(v, key == "rho", scene.channels, file, at, "default");
       (key == "rho" ? default_rho : default_e) = std::move(v);
     }
   }
@@ -349,39 +525,49 @@ ChannelScene load_off_scene(const std::string& path, const std::string& material
   std::vector<long> entry_of(nf, -1);
   if (doc.contains("facets")) {
     const Json& facets = doc["facets"];
-    if (!facets.is_array()) fail(file, 0, "\"facets\" must be an array of {\"id\" or \"ids\", \"rho\", \"E\"}");
+    if (!facets.is_array())
+      fail(file, line("facets"), "\"facets\" must be an array of {\"id\" or \"ids\", \"rho\", \"E\"}");
     for (std::size_t k = 0; k < facets.size(); ++k) {
       const Json& entry = facets[k];
       const std::string at = "facets[" + std::to_string(k) + "]";
-      if (!entry.is_object()) fail(file, 0, at + " is " + entry.dump() + ": expected an object");
+      const long at_line = line(at);
+      if (!entry.is_object()) fail(file, at_line, at + " is " + entry.dump() + ": expected an object");
       for (const auto& [key, value] : entry.items())
         if (key != "id" && key != "ids" && key != "rho" && key != "E")
-          fail(file, 0, at + ": unknown key " + in_quotes(key) + " (expected \"id\" or \"ids\", \"rho\", \"E\")");
+          fail(file, line(at + "." + key),
+               at + ": unknown key " + in_quotes(key) + " (expected \"id\" or \"ids\", \"rho\", \"E\")");
       if (entry.contains("id") == entry.contains("ids"))
-        fail(file, 0, at + ": needs exactly one of \"id\" (a facet) or \"ids\" (a list of facets)");
-      if (!entry.contains("rho") && !entry.contains("E")) fail(file, 0, at + ": gives neither \"rho\" nor \"E\"");
+        fail(file, at_line, at + ": needs exactly one of \"id\" (a facet) or \"ids\" (a list of facets)");
+      if (!entry.contains("rho") && !entry.contains("E")) fail(file, at_line, at + ": gives neither \"rho\" nor \"E\"");
       std::vector<Json> ids;
+      const std::string id_key = entry.contains("id") ? "id" : "ids";
+      const long id_line = line(at + "." + id_key);
       if (entry.contains("id")) {
         ids.push_back(entry["id"]);
       } else {
         const Json& list = entry["ids"];
-        if (!list.is_array() || list.empty()) fail(file, 0, at + ": \"ids\" must be a non-empty array of facet ids");
+        if (!list.is_array() || list.empty())
+          fail(file, id_line, at + ": \"ids\" must be a non-empty array of facet ids");
         ids.assign(list.begin(), list.end());
       }
       std::vector<std::size_t> targets;
       for (const Json& id : ids) {
-        if (!id.is_number_integer())
-          fail(file, 0, at + ": facet id " + id.dump() + " is not an integer");
+        if (!id.is_number_integer()) fail(file, id_line, at + ": facet id " + id.dump() + " is not an integer");
         const auto value = id.get<long long>();
         if (value < 0 || static_cast<unsigned long long>(value) >= nf)
-          fail(file, 0, at + ": facet " + std::to_string(value) + " is out of range [0, " + std::to_string(nf - 1) +
-                            "] (" + path + " has " + std::to_string(nf) + " faces)");
+          fail(file, id_line, at + ": facet " + std::to_string(value) + " is out of range [0, " + std::to_string(nf - 1) +
+                                  "] (" + path + " has " + std::to_string(nf) + " faces)");
         const auto f = static_cast<std::size_t>(value);
-        if (entry_of[f] >= 0)
-          fail(file, 0, at + ": facet " + std::to_string(f) + " is given twice (also in " +
-                            (entry_of[f] == static_cast<long>(k) ? "this entry"
-                                                                 : "facets[" + std::to_string(entry_of[f]) + "]") +
-                            ")");
+        if (entry_of[f] >= 0) {
+          const bool same = entry_of[f] == static_cast<long>(k);
+          const std::string other = "facets[" + std::to_string(entry_of[f]) + "]";
+          const long other_line = line(other);
+          fail(file, id_line,
+               at + ": facet " + std::to_string(f) + " is given twice (also in " +
+                   (same ? std::string("this entry")
+                         : other + (other_line > 0 ? " at line " + std::to_string(other_line) : std::string())) +
+                   ")");
+        }
         entry_of[f] = static_cast<long>(k);
         targets.push_back(f);
       }
@@ -390,8 +576,9 @@ ChannelScene load_off_scene(const std::string& path, const std::string& material
       for (const char* key : {"rho", "E"}) {
         if (!entry.contains(key)) continue;
         const bool is_rho = std::string(key) == "rho";
-        const std::vector<double> v = channel_values(entry[key], nc, file, who + " " + key);
-        check_values(v, is_rho, scene.channels, file, who);
+        const long key_line = line(at + "." + key);
+        const std::vector<double> v = channel_values(entry[key], nc, file, key_line, who + " " + key);
+        check_values(v, is_rho, scene.channels, file, key_line, who);
         for (std::size_t f : targets) (is_rho ? rho : e)[f] = v;
       }
     }
@@ -408,7 +595,7 @@ ChannelScene load_off_scene(const std::string& path, const std::string& material
       const auto& given = (is_rho ? rho : e)[f];
       const auto& fallback = is_rho ? default_rho : default_e;
       if (!given && !fallback)
-        fail(file, 0, "facet " + std::to_string(f) + " has no " + (is_rho ? "rho" : "E") +
+        fail(file, entry_of[f] >= 0 ? line("facets[" + std::to_string(entry_of[f]) + "]") : 0, "facet " + std::to_string(f) + " has no " + (is_rho ? "rho" : "E") +
                           (entry_of[f] >= 0 ? " (in facets[" + std::to_string(entry_of[f]) + "])" : " (not listed)") +
                           " and there is no default " + (is_rho ? "rho" : "E"));
       const std::vector<double>& v = given ? *given : *fallback;
@@ -422,15 +609,43 @@ ChannelScene load_off_scene(const std::string& path, const std::string& material
 
 }  // namespace
 
-ChannelScene load_channel_scene(const std::string& path, const std::string& materials_path) {
+std::string reflectivity_problem(double rho) {
+  if (!std::isfinite(rho)) return "is not a finite number";
+  if (!(rho >= 0.0 && rho < 1.0)) return "is outside [0, 1) (paper (7): 0 <= rho < 1)";
+  if (rho > 0.0 && rho < DBL_MIN)
+    return "is subnormal (below DBL_MIN = " + number(DBL_MIN) +
+           "): it has lost precision and makes the solve compute with subnormal numbers; write 0";
+  return "";
+}
+
+std::string emission_problem(double e) {
+  if (!std::isfinite(e)) return "is not a finite number";
+  if (e < 0.0) return "is negative (emission E must be >= 0)";
+  if (e > 0.0 && e < DBL_MIN)
+    return "is subnormal (below DBL_MIN = " + number(DBL_MIN) +
+           "): it has lost precision already and the solve would lose the rest; scale all E up (the radiosity "
+           "equation is linear in E) or write 0";
+  if (e > 0.0 && e < kMinPositiveEmission)
+    return "is below " + number(kMinPositiveEmission) +
+           ", the smallest non-zero E accepted (products with areas and squared norms in the solve would "
+           "underflow); scale all E up (the radiosity equation is linear in E) or write 0";
+  if (e > kMaxEmission)
+    return "is above " + number(kMaxEmission) +
+           ", the largest E accepted (the radiosity u <= E / (1 - rho) and its squares and products with areas "
+           "in the solve would overflow); scale all E down (the radiosity equation is linear in E)";
+  return "";
+}
+
+ChannelScene load_channel_scene(const std::string& path, const std::string& materials_path,
+                                const geometry::TextReadOptions& options) {
   const std::string ext = lower_extension(path);
   if (ext == ".obj") {
     if (!materials_path.empty())
       fail(path, 0, "a materials file (" + materials_path + ") applies to OFF scenes only; an OBJ names its MTL "
                     "files with mtllib");
-    return load_obj_scene(path);
+    return load_obj_scene(path, options);
   }
-  if (ext == ".off") return load_off_scene(path, materials_path);
+  if (ext == ".off") return load_off_scene(path, materials_path, options);
   fail(path, 0, "unknown scene format " + in_quotes(ext.empty() ? "(no extension)" : ext) +
                     ": expected .obj (with MTL) or .off (with a JSON sidecar)");
 }

@@ -8,8 +8,16 @@
 // the same line), "#" comments, one vertex per line (x y z, then any extra numbers such as normals
 // or colours), one face per line ("k i1 .. ik" then up to four colour numbers). Accepted OBJ: "v x y
 // z [w | r g b]", "f" with v, v/vt, v//vn, v/vt/vn and negative (relative) indices, line
-// continuation by a trailing backslash; vt, vn, vp, l, o, g, s, usemtl, mtllib are ignored.
+// continuation by a trailing backslash; vt, vn, vp, l, o, g, s, usemtl, mtllib are ignored. OBJ
+// statements are case-sensitive: a miscased one (`V`, `F`) is an error naming the line, as are
+// free-form geometry (curv, surf, ...) and unknown statements.
+//
+// Files are read by the bounded reader (text_file.hpp): regular files only (no FIFO, device or
+// directory), at most TextReadOptions::max_bytes (default 1 GiB), no NUL byte (refused at the first
+// with its line and byte offset, after reading at most its 64 KiB chunk). A leading UTF-8
+// byte-order mark is removed. Streams (read_off, read_obj) are read the same way up to the limit.
 #include <panelrad/geometry/mesh.hpp>
+#include <panelrad/geometry/text_file.hpp>
 
 #include <iosfwd>
 #include <string>
@@ -18,8 +26,8 @@
 namespace panelrad::geometry {
 
 /// Reads an OFF or OBJ file, chosen by extension (case-insensitive). Throws MeshError naming the
-/// file, the line and what is wrong: missing/unreadable file, unknown extension, empty or
-/// truncated file, garbage, a face index out of range, a face with fewer than 3 vertices, a
+/// file, the line and what is wrong: missing/unreadable file, not a regular file, above the size
+/// limit, a NUL byte, unknown extension, empty or truncated file, garbage, a face index out of range, a face with fewer than 3 vertices, a
 /// non-finite coordinate. Never returns a partial mesh.
 /// Notes (merged duplicate vertices, dropped unused vertices) are appended to `notes` when given.
 /// What an OBJ file says about materials (for scene files, which give rho and E per material):
@@ -36,10 +44,12 @@ struct ObjMaterialUse {
   std::vector<long> usemtl_line;           ///< per face: the line of that `usemtl` (0 if none)
 };
 
-TriangleMesh read_mesh(const std::string& path, std::vector<std::string>* notes = nullptr);
+/// `options`: the reader's size limit (and byte-order mark removal).
+TriangleMesh read_mesh(const std::string& path, std::vector<std::string>* notes = nullptr,
+                       const TextReadOptions& options = {});
 /// read_mesh of an OBJ file that also returns its material statements in `materials`.
 TriangleMesh read_obj_with_materials(const std::string& path, ObjMaterialUse& materials,
-                                     std::vector<std::string>* notes = nullptr);
+                                     std::vector<std::string>* notes = nullptr, const TextReadOptions& options = {});
 
 /// The same file read by OpenMesh's readers (OpenMesh::IO, double precision), fan-triangulated
 /// like read_mesh but without merging vertices: an independent second reader, to cross-check
@@ -47,10 +57,10 @@ TriangleMesh read_obj_with_materials(const std::string& path, ObjMaterialUse& ma
 /// no face (its OFF reader takes a file with '#' comment lines for an empty mesh, without error).
 TriangleMesh read_mesh_with_openmesh(const std::string& path);
 
-/// The same from a stream; `name` is used in messages.
-TriangleMesh read_off(std::istream& in, const std::string& name,
-                      std::vector<std::string>* notes = nullptr);
-TriangleMesh read_obj(std::istream& in, const std::string& name,
-                      std::vector<std::string>* notes = nullptr);
+/// The same from a stream; `name` is used in messages. The stream is read up to the size limit.
+TriangleMesh read_off(std::istream& in, const std::string& name, std::vector<std::string>* notes = nullptr,
+                      const TextReadOptions& options = {});
+TriangleMesh read_obj(std::istream& in, const std::string& name, std::vector<std::string>* notes = nullptr,
+                      const TextReadOptions& options = {});
 
 }  // namespace panelrad::geometry
