@@ -1,5 +1,7 @@
 #pragma once
-// Exact validation of a closed convex polyhedral surface (CGAL exact predicates, no tolerances).
+// Validation of a closed convex polyhedral surface: CGAL exact predicates decide every rule; a
+// convexity violation that the rounding of the input coordinates explains (see InputRounding and
+// validate_closed_convex) is accepted with a note, anything larger is refused.
 #include <panelrad/geometry/mesh.hpp>
 
 #include <cstddef>
@@ -20,25 +22,101 @@ struct ValidationReport {
   std::string message;  ///< one line naming the rule, the first offending face or vertex
                         ///< (index and coordinates) and, for convexity, the worst violation
                         ///< relative to the mesh diameter
-  std::vector<std::string> notes;           ///< warnings: faces flipped, hull re-triangulation
+  std::vector<std::string> notes;           ///< warnings: faces flipped, hull re-triangulation,
+                                            ///< convex within the rounding of the input
   std::size_t flipped_faces = 0;            ///< faces re-oriented to a consistent orientation
   bool retriangulated_from_hull = false;    ///< non-planar rounded polygons re-triangulated exactly
-  double worst_convexity_violation = 0.0;   ///< max signed distance outside, / diameter (invalid)
+  bool convex_within_rounding = false;      ///< accepted: not exactly convex, but every violation is
+                                            ///< within the rounding bound of the input (see below)
+  double worst_convexity_violation = 0.0;   ///< largest distance of a vertex outside a triangle's
+                                            ///< plane, / diameter: set when refused as non-convex
+                                            ///< (never 0 then) and when convex_within_rounding
+  double worst_rounding_ratio = 0.0;        ///< convex_within_rounding: max over the violations of
+                                            ///< distance / its rounding bound (<= 1)
 };
+
+/// What the rounding of the input coordinates can have moved each vertex by.
+///
+/// A coordinate written with d significant decimal digits is off from the value it rounds by at most
+/// half a unit in its last digit, 0.5 * 10^(e + 1 - d) <= 0.5 * 10^(1 - d) * |x| (e = its decimal
+/// exponent); a double computed by a rotation x' = R x in double precision (R's entries rounded, each
+/// coordinate a 3-term dot product) is off by at most about 4 u |R| |x| <= 12 u M with u = 2^-53, and
+/// 16 u M is taken. Relative to the largest coordinate magnitude M (not the diameter: a translated
+/// mesh carries the rounding of its absolute coordinates):
+///   eta = (rho_d + 16 u) M,  rho_d = 0.5 * 10^(1 - d) for decimal input, 0 for binary doubles.
+/// The digits d are inferred from the coordinates themselves: `digits` = the most significant
+/// digits any coordinate's shortest round-trip decimal form needs (what %.{d}g must print for every
+/// coordinate to read back exactly). digits <= 16 is taken as a decimal export with
+/// assumed_digits = max(6, digits) (6 = printf's %g and iostream's default, the coarsest precision
+/// assumed: short hand-written coordinates such as integers are not taken as 1-digit roundings);
+/// 17 as binary doubles. Per input precision, with M the coordinate magnitude:
+///   17 digits (binary): eta = 1.8e-15 M;  15 digits: eta = 5.0e-15 M;  6 digits: eta = 5.0e-6 M.
+/// A dent smaller than what that rounding can produce cannot be told from it (a 6-digit file
+/// cannot show a 1e-6 dent of a mesh around the origin).
+struct InputRounding {
+  int digits = 0;               ///< most significant digits a coordinate needs to read back (1..17)
+  int assumed_digits = 17;      ///< precision assumed for the export; 17 = binary double
+  bool decimal = false;         ///< digits <= 16: taken as decimal rounding to assumed_digits
+  double magnitude = 0.0;       ///< M = max |coordinate|
+  double relative = 0.0;        ///< rho_d + 16 u
+  double per_coordinate = 0.0;  ///< eta = relative * M, bound on |rounded - true| per coordinate
+  std::string describe() const; ///< "coordinates rounded to 6 significant digits (magnitude 1.37)"
+};
+
+/// The rounding model of a mesh's coordinates (finite coordinates required).
+InputRounding input_rounding(const TriangleMesh& mesh);
+
+/// Largest violation, relative to the mesh diameter, that is ever attributed to rounding, whatever
+/// the input precision: above it the input is too coarse to be called convex.
+inline constexpr double kMaxRoundingViolation = 1e-4;
 
 /// Checks, with CGAL exact predicates: finite coordinates; no zero-area triangle; closed
 /// 2-manifold; convex (every vertex on the inner side of, or on, every triangle's supporting
 /// plane), hence unoccluded. On success the mesh is oriented outward (counter-clockwise from
-/// outside), flipping inconsistently oriented faces (reported in notes). Polygon faces whose
-/// fan triangulation is not exactly convex (rounded coordinates) are re-triangulated from the
-/// exact convex hull when the hull has exactly the input's vertices and each hull triangle lies on
-/// the vertices of one input face; otherwise the mesh is rejected.
-/// A facet's vertex set is the union of the vertices of its triangles (facet_of_triangle).
+/// outside), flipping inconsistently oriented faces (reported in notes).
+///
+/// When the mesh is not exactly convex:
+/// 1. Polygon faces whose fan triangulation is not exactly convex are re-triangulated from the
+///    exact convex hull when the hull has exactly the input's vertices and each hull triangle lies
+///    on the vertices of one input face (a facet's vertex set is the union of the vertices of its
+///    triangles, facet_of_triangle); the result is then proven convex exactly.
+/// 2. Otherwise the mesh is accepted as convex within the rounding of its input
+///    (convex_within_rounding, with a note naming the worst vertex, triangle and distance relative
+///    to the diameter) when every vertex v strictly outside the plane of a triangle (a, b, c) lies
+///    outside it by at most
+///        bound(t, v) = 1.25 eta |n|_1 (1 + |l_a| + |l_b| + |l_c|),
+///    n the unit normal, l the barycentric coordinates of v's projection on the plane, eta from
+///    input_rounding(); every violation is at most kMaxRoundingViolation of the diameter; and the
+///    surface winds once, strictly, around an interior point.
+///    Derivation: let the true points p* = p - e, |e|_inf <= eta, form a convex mesh, so v* is on
+///    the inner side of the plane of (a*, b*, c*). The signed distance phi(x) = (x - a) . n to the
+///    rounded plane is affine; writing v* = sum l*_i p*_i + h n* with h <= 0 and n . n* > 0 gives
+///    phi(v*) <= sum l*_i phi(p*_i) = -sum l*_i e_i . n <= eta |n|_1 sum |l*_i|, and
+///    phi(v) = phi(v*) + e_v . n <= eta |n|_1 (1 + sum |l*_i|). The l computed from rounded points
+///    differ from l* at first order in eta / h_t (h_t the triangle's smallest height); the bound is
+///    used only where sqrt(3) eta <= h_t / 16, and the 25% covers that difference.
+///    What V = 1 (every pair of surface points sees each other, section 2) can then be wrong by:
+///    with tau the largest violation, every triangle's plane has the whole mesh within tau on its
+///    outer side, so the surface departs from the convex hull of its vertices by a layer at most
+///    tau thick. A segment PQ leaves the solid only through a triangle t' it crosses at a point X,
+///    and then Q (or P) lies at most tau outside the plane of t': |XQ| sin(gamma) <= tau, gamma the
+///    angle of PQ with t'. The points hidden from P are thus grazing strips behind ridges of height
+///    <= tau; seen from a point P at distance rho from the off-plane vertices their configuration
+///    factor (1/pi) Int cos(theta_P) d omega is of order tau / rho (a strip of depth tau / sin gamma
+///    seen at incidence sin gamma from distance rho). The note states tau / diameter and this
+///    estimate at rho = 1% of the diameter.
+/// 3. Otherwise the mesh is refused ("convex"), the message naming the first non-convex triangle,
+///    its farthest vertex outside and the worst violation relative to the diameter: distances
+///    from an accurate determinant (exact rational arithmetic when double precision cannot
+///    resolve it), so a refusal never reports a violation of 0; then why 1 and 2 do not apply.
 ValidationReport validate_closed_convex(TriangleMesh& mesh);
 
 /// Number of maximal planar facets: classes of triangles joined across shared edges whose four
-/// vertices are exactly coplanar (a square split in two is one). Works on any mesh (edges not
-/// shared by exactly two triangles simply join nothing).
+/// vertices are coplanar (a square split in two is one): exactly, or within the rounding of the
+/// input (each far vertex within bound(t, v) of the other triangle's plane, as in
+/// validate_closed_convex, and within kMaxRoundingViolation of the diameter), so that a rotated
+/// or rounded cube still has 6. Works on any mesh with finite coordinates (edges not shared by
+/// exactly two triangles simply join nothing).
 std::size_t count_planar_facets(const TriangleMesh& mesh);
 
 /// Reads ("builtin:NAME" -> make_builtin(NAME), else read_mesh) and validates; throws MeshError with the report's message when invalid.
