@@ -50,9 +50,12 @@ struct ValidationReport {
 /// assumed_digits = max(6, digits) (6 = printf's %g and iostream's default, the coarsest precision
 /// assumed: short hand-written coordinates such as integers are not taken as 1-digit roundings);
 /// 17 as binary doubles. Per input precision, with M the coordinate magnitude:
-///   17 digits (binary): eta = 1.8e-15 M;  15 digits: eta = 5.0e-15 M;  6 digits: eta = 5.0e-6 M.
+///   17 digits (binary): eta = 1.8e-15 M;  15 digits: eta = 6.8e-15 M;  6 digits: eta = 5.0e-6 M;
+///   the largest violation accepted is bound(t, v) below, a few eta for well-shaped triangles.
 /// A dent smaller than what that rounding can produce cannot be told from it (a 6-digit file
-/// cannot show a 1e-6 dent of a mesh around the origin).
+/// cannot show a 1e-6 dent of a mesh around the origin). Only the digits the file shows count: a
+/// mesh rounded to 6 digits, then rotated and written with 17, carries a 6-digit error that its
+/// digits no longer show; it is accepted only when the exact hull re-triangulation applies.
 struct InputRounding {
   int digits = 0;               ///< most significant digits a coordinate needs to read back (1..17)
   int assumed_digits = 17;      ///< precision assumed for the export; 17 = binary double
@@ -60,7 +63,7 @@ struct InputRounding {
   double magnitude = 0.0;       ///< M = max |coordinate|
   double relative = 0.0;        ///< rho_d + 16 u
   double per_coordinate = 0.0;  ///< eta = relative * M, bound on |rounded - true| per coordinate
-  std::string describe() const; ///< "coordinates rounded to 6 significant digits (magnitude 1.37)"
+  std::string describe() const; ///< "coordinates rounded to 6 significant digits of magnitude 1.37"
 };
 
 /// The rounding model of a mesh's coordinates (finite coordinates required).
