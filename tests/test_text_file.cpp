@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -117,6 +118,18 @@ TEST_F(TextFile, SizeLimitIsNamedAndConfigurable) {
                   "stream.obj: grew while being read: is 101 bytes");
   std::istringstream fits(std::string(100, 'x'));
   EXPECT_EQ(pg::read_text_stream(fits, "stream.obj", small).size(), 100u);
+  // A regular file whose size is not known up front (/proc files say 0): stopped at the limit.
+  if (fs::exists("/proc/self/status")) {
+    EXPECT_CONTAINS(error_of([&] { pg::read_text_file("/proc/self/status", "", small); }),
+                    "/proc/self/status: grew while being read: is 101 bytes");
+    EXPECT_CONTAINS(pg::read_text_file("/proc/self/status"), "VmPeak:");
+  }
+  // No limit at all (the largest count): limit + 1 must not wrap around to 0.
+  pg::TextReadOptions unlimited;
+  unlimited.max_bytes = UINT64_MAX;
+  EXPECT_EQ(pg::read_text_file(above, "", unlimited).size(), 101u);
+  std::istringstream any(std::string(101, 'x'));
+  EXPECT_EQ(pg::read_text_stream(any, "stream.obj", unlimited).size(), 101u);
 }
 
 TEST_F(TextFile, DescribesByteCounts) {

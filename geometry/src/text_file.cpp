@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
 #include <istream>
 #include <sstream>
@@ -67,9 +68,10 @@ std::string read_chunks(ReadSome read_some, std::uint64_t expected_size, const s
   std::string text;
   std::size_t chunk = kFirstChunk;
   bool reserved = false;
+  // At most limit + 1 bytes in all: one byte past the limit shows that the file is too large.
+  const std::uint64_t most = options.max_bytes == UINT64_MAX ? UINT64_MAX : options.max_bytes + 1;
   while (true) {
-    // At most limit + 1 bytes in all: one byte past the limit shows that the file is too large.
-    const std::uint64_t room = options.max_bytes + 1 - std::min<std::uint64_t>(text.size(), options.max_bytes + 1);
+    const std::uint64_t room = most - std::min<std::uint64_t>(text.size(), most);
     if (room == 0) fail(name, "grew while being read: " + too_large(text.size(), options.max_bytes));
     auto want = static_cast<std::size_t>(std::min<std::uint64_t>(chunk, room));
     const std::size_t old = text.size();
