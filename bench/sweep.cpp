@@ -1,4 +1,4 @@
-// Run time against error (issue 5, point 1): sweeps method (dense, fast) x near rule (exact,
+// Run time against error: sweeps method (dense, fast) x near rule (exact,
 // quadrature with mu) x eta (41) x Taylor degree M (44) x n on the paper's cube (31) and on a
 // hexagonal prism, both with the manufactured solution u = x^2 + y^2 + z^2, and writes one CSV row
 // per run plus a log-log PNG of the error (51) against total time with the Pareto front marked.

@@ -119,7 +119,7 @@ int run_cube(int argc, char** argv) {
       for (int level = o.min_level; level <= o.max_level;) {
         CubeRunOptions group = o;
         group.op = choose_parameters(problem_size(cube, level));
-        group.tighten_on_failed_check = true;  // issue 5.7: the self-check can only make it stricter
+        group.tighten_on_failed_check = true;  // the self-check can only make it stricter
         group.min_level = level;
         while (level + 1 <= o.max_level &&
                describe_parameters(choose_parameters(problem_size(cube, level + 1))) == describe_parameters(group.op))

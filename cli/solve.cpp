@@ -1,5 +1,5 @@
 // panelrad solve: a user's scene (OBJ + MTL, or OFF + JSON sidecar) solved in every colour channel
-// with one operator, written as CSV, PLY, VTK and a PNG picture (issue 6).
+// with one operator, written as CSV, PLY, VTK and a PNG picture.
 #include "commands.hpp"
 #include "options.hpp"
 

@@ -1,4 +1,4 @@
-// Automatic parameters (issue 5, point 2): the rule of auto_parameters.hpp keeps the solution
+// Automatic parameters: the rule of auto_parameters.hpp keeps the solution
 // within 5% of the discretization error, is deterministic, and refuses bad input.
 #include <panelrad/auto_parameters.hpp>
 #include <panelrad/cube_example.hpp>
@@ -167,7 +167,7 @@ TEST(AutoParameters, TheCriterionRejectsACheapSetting) {
   EXPECT_GT(r.deviation, 0.05 * r.reference_error);
 }
 
-// Issue 5.7: a setting whose self-check fails is tightened until the check passes.
+// A setting whose self-check fails is tightened until the check passes.
 TEST(AutoParameters, FailedSelfCheckTightensTheParameters) {
   panelrad::CubeRunOptions o;
   o.min_level = o.max_level = 3;

@@ -31,7 +31,7 @@ std::string temp_path(const std::string& name) {
   return (std::filesystem::temp_directory_path() / ("panelrad_cli_cube_" + std::to_string(::getpid()) + "_" + name)).string();
 }
 
-TEST(CliCube, DenseCsvHasTheIssuesHeaderAndOneRowPerN) {
+TEST(CliCube, DenseCsvHasTheDocumentedHeaderAndOneRowPerN) {
   const std::string csv = temp_path("dense.csv");
   const CliRun r = run("cube --levels 1 --csv " + csv);
   ASSERT_EQ(r.status, 0) << r.output;

@@ -1,6 +1,7 @@
 // The CLI refuses sizes that cannot fit before any work, by every command, with the estimate;
 // the memory available honours the process's own limit (ulimit -v); option checks at parse
 // time: --threads, cube --rule, the --tol range, --max-elements below n0.
+#include "test_support.hpp"
 #include "cli_run.hpp"
 
 #include <gtest/gtest.h>
@@ -12,13 +13,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#if defined(__SANITIZE_ADDRESS__)
-#define PANELRAD_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define PANELRAD_ASAN 1
-#endif
-#endif
 
 namespace {
 

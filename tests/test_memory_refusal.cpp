@@ -1,7 +1,8 @@
 // A size that will not fit in memory is refused before allocating, with the estimate shown
-// (issue 5.6): the dense matrix K_n (33), the cluster tree (40) and, through the tree, the
+// for the dense matrix K_n (33), the cluster tree (40) and, through the tree, the
 // collocation and the fast operator. "Before allocating" is checked with the peak resident set
 // size (VmHWM): it must not grow by more than a small slack across the refused call.
+#include "test_support.hpp"
 #include <panelrad/collocation.hpp>
 #include <panelrad/dense_operator.hpp>
 #include <panelrad/fast_operator.hpp>
@@ -54,7 +55,7 @@ std::string message_of(F&& f) {
 }
 
 TEST(MemoryRefusal, DenseMatrixBytesAreExactAndSaturate) {
-  EXPECT_EQ(DenseOperator::matrix_bytes(12288), std::size_t{12288} * 12288 * 8);  // 1.2 GB (issue 3)
+  EXPECT_EQ(DenseOperator::matrix_bytes(12288), std::size_t{12288} * 12288 * 8);  // 1.2 GB
   EXPECT_EQ(DenseOperator::matrix_bytes(0), 0u);
   // n^2 * 8 exceeds 2^64 for n > 2^30.5: an unchecked product wraps (n = 1518500250 would give
   // 291 MB) and a 18 EB matrix would be accepted. It must saturate instead.
@@ -173,13 +174,6 @@ TEST(MemoryRefusal, FastOperatorEstimateMatchesAndRefuses) {
 
 // ---- The memory this process may still allocate, and the up-front estimate of a level ---------
 
-#if defined(__SANITIZE_ADDRESS__)
-#define PANELRAD_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define PANELRAD_ASAN 1
-#endif
-#endif
 
 // A made-up cgroup hierarchy under a temporary root: the headroom is limit - (usage - inactive
 // file cache), the least over the process's cgroup and its ancestors; "max" is no limit.

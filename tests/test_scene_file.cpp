@@ -1,4 +1,5 @@
 // Scene files: OBJ + MTL and OFF + JSON sidecar loading, and every error message.
+#include "test_support.hpp"
 #include <panelrad/scene_file.hpp>
 
 #include <gtest/gtest.h>
@@ -44,24 +45,9 @@ const std::string kGoodMtl =
     "newmtl unused\nKd 0.2 0.2 0.2\n";
 
 /// A fresh directory per test, removed afterwards.
-class SceneFile : public ::testing::Test {
+class SceneFile : public panelrad::testing::TempDirTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("panelrad_scene_file_" + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-  std::string write(const std::string& name, const std::string& text) {
-    const std::string path = (dir_ / name).string();
-    std::ofstream(path, std::ios::binary) << text;
-    return path;
-  }
+  SceneFile() : TempDirTest("panelrad_scene_file") {}
   /// The cube OBJ with `mtllib cube.mtl`, "usemtl" before each face from `materials` (empty: none).
   std::string cube_obj(const std::vector<std::string>& materials, const std::string& head = "mtllib cube.mtl\n") {
     std::string text = head + kCubeVertices;
@@ -76,7 +62,6 @@ class SceneFile : public ::testing::Test {
     write("cube.json", json);
     return write("cube.off", kCubeOff);
   }
-  fs::path dir_;
 };
 
 /// The SceneFileError message thrown by loading, or "" when nothing is thrown.

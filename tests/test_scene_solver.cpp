@@ -1,4 +1,4 @@
-// Multi-channel scene solve (issue 6): one operator H for all channels, K_c = diag(rho_c) H,
+// Multi-channel scene solve: one operator H for all channels, K_c = diag(rho_c) H,
 // checked against known answers (constant solution), the dense operator built with rho, and the
 // energy balance of a closed convex scene.
 #include <panelrad/collocation.hpp>

@@ -1,4 +1,4 @@
-// Stress tests of numerical stability (issue 5.4). Every case has a known answer and reports its
+// Stress tests of numerical stability. Every case has a known answer and reports its
 // worst error ("[stress] ..." lines and RecordProperty), and none may produce NaN or Inf:
 //  - row-sum identity: on a closed convex surface each row of K_n sums to rho(P_i) with the exact
 //    rule (Lemma 1; (33));
@@ -127,7 +127,7 @@ Figures check_scene(const std::string& name, const Scene& scene, int level, cons
 //  - row sums: n terms of size <= 1, each closed form accurate to a few ulp: 1e-12 (as on the
 //    plain cube, test_dense_cube), whatever the shape;
 //  - constant solution: ||(I - K)^-1|| <= 1/(1 - rho) = 2 times the row-sum defect: 1e-11;
-//  - fast vs dense with the paper's (eta, M) = (0.2, 2): the issue's 1e-3 bound on the cube. The
+//  - fast vs dense with the paper's (eta, M) = (0.2, 2): the 1e-3 bound that holds on the cube (test_fast_operator). The
 //    Taylor remainder depends on R(tau)/|P - A(tau)| <= eta only (R is the circumradius, which
 //    bounds |Q - A| for every Q of the cluster, however thin), so the bound does not depend on the
 //    shape of the elements.
@@ -217,7 +217,7 @@ TEST(StressNumerics, CubeScaledAndTranslated) {
 
 // The manufactured solution u = |(Q - offset)/scale|^2 of the paper's cube (31): the error (51) of
 // the fast method is a property of the discretization, so it must not change when the cube is
-// scaled or moved (to 3 digits: the issue's translation target; the discretization error is
+// scaled or moved (to 3 digits, the digits the paper prints; the discretization error is
 // ~1e-2 and the placements perturb it by ~1e-8).
 TEST(StressNumerics, ManufacturedErrorDoesNotDependOnPlacement) {
   const int level = 2;

@@ -1,4 +1,4 @@
-// Solvers under stress (issue 5.3): reflectivity up to 0.99 on closed boxes (the cube and a
+// Solvers under stress: reflectivity up to 0.99 on closed boxes (the cube and a
 // hexagonal prism). Neumann's step count (34) grows like 1/(1 - rho), GMRES's stays bounded, the
 // automatic choice picks Neumann for rho <= 0.8 and GMRES above and says so. Known answers: with
 // constant rho and E = c (1 - rho) on a closed convex surface the solution is u = c, and the

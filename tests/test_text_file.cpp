@@ -1,6 +1,7 @@
 // The bounded text reader (geometry/text_file.hpp) shared by the mesh, MTL and JSON readers:
 // non-regular files refused before they are opened for reading, the size limit, NUL bytes refused
 // at the first one with line and byte offset, the UTF-8 byte-order mark.
+#include "test_support.hpp"
 #include <panelrad/geometry/text_file.hpp>
 
 #include <gtest/gtest.h>
@@ -40,24 +41,9 @@ long peak_rss_kib() {
   return usage.ru_maxrss;
 }
 
-class TextFile : public ::testing::Test {
+class TextFile : public panelrad::testing::TempDirTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("panelrad_text_file_" + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-  std::string write(const std::string& name, const std::string& text) {
-    const std::string path = (dir_ / name).string();
-    std::ofstream(path, std::ios::binary) << text;
-    return path;
-  }
-  fs::path dir_;
+  TextFile() : TempDirTest("panelrad_text_file") {}
 };
 
 }  // namespace

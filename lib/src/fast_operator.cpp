@@ -64,7 +64,7 @@ FastOperator::FastOperator(const Collocation& collocation, const FastOptions& op
   const int T = terms_ = num_taylor_terms(options_.degree);
   const int M = options_.degree;
   n_ = tree.num_elements();
-  {  // refuse what will not fit, before any large allocation (issue 5.6)
+  {  // refuse what will not fit, before any large allocation
     const MemoryEstimate est = estimate_memory(collocation, options_.eta, options_.degree);
     const std::size_t peak = est.bytes + est.list_bytes;
     const std::size_t limit = options_.memory_limit ? options_.memory_limit : available_memory_bytes();

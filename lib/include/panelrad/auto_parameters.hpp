@@ -1,5 +1,5 @@
 #pragma once
-// Automatic parameters (issue 5, point 2): the method, near rule, eta of (41) and Taylor degree M
+// Automatic parameters: the method, near rule, eta of (41) and Taylor degree M
 // of (44) for a scene of a given size, so that the solution stays within 5% of the
 // discretization error at the least cost measured by bench/sweep (bench/results/sweep.csv).
 //

@@ -38,7 +38,7 @@ class Collocation {
   /// The same discretization with rho(P_i) replaced by `weights` (finite, >= 0; a weight of 0
   /// marks a row that is not needed): an operator built on it computes
   /// (W v)_i = w_i / pi Int_S v G(P_i, Q) dS_Q. With w = 1 it is the irradiance operator H of a
-  /// multi-channel solve, K_n = diag(rho) H for every channel (issue 6). Shares the cluster tree.
+  /// multi-channel solve, K_n = diag(rho) H for every channel. Shares the cluster tree.
   Collocation with_row_weights(Eigen::VectorXd weights) const;
 
   double tree_seconds() const { return tree_s_; }

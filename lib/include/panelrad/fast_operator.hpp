@@ -35,7 +35,7 @@ struct FastOptions {
   std::function<void(const std::string&)> progress;
 };
 
-/// What setup found and stored (issue: report the counts).
+/// What setup found and stored: the covering's counts.
 struct FastStatistics {
   std::size_t near_pairs = 0;          ///< (P_i, element) pairs in the near field
   std::size_t far_pairs = 0;           ///< (P_i, cluster) pairs in the far field

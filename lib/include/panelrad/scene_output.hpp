@@ -1,5 +1,5 @@
 #pragma once
-// Outputs of a solved scene (issue 6): per-element radiosity as CSV, a PLY with per-face colours
+// Outputs of a solved scene: per-element radiosity as CSV, a PLY with per-face colours
 // (MeshLab, ParaView), a legacy VTK polydata file (ParaView), and a PNG picture from a default
 // viewpoint. Each write_* function writes its file whole or not at all (write_file_atomically);
 // the radiosity_* functions return the file's contents, so that a program can write several of

@@ -1,5 +1,5 @@
 #pragma once
-// Solving a scene with several colour channels (issue 6): one discretization and one operator
+// Solving a scene with several colour channels: one discretization and one operator
 // for all channels. The operator is the irradiance operator H, (H v)_i = 1/pi Int_S v G(P_i,Q) dS_Q,
 // so that K_n = diag(rho_c) H in every channel c (paper (33)); each channel is then one more
 // right-hand side: (I - diag(rho_c) H) u_c = E_c, (32).
@@ -36,7 +36,7 @@ class ScaledOperator final : public RadiosityOperator {
 struct SceneSolveOptions {
   int levels = -1;                    ///< refinement levels; < 0: the largest with n <= max_elements
   geometry::Index max_elements = 20000;  ///< used when levels < 0 (level 0 at least)
-  std::string method = "auto";        ///< auto (issue 5 rule, self-checked) | dense | fast
+  std::string method = "auto";        ///< auto (the measured rule of auto_parameters.hpp, self-checked) | dense | fast
   OperatorOptions manual;             ///< near rule, eta, M when method is dense or fast
   SolverKind solver = SolverKind::automatic;
   double tolerance = 0;               ///< relative; 0: discretization_tolerance(h, diam)

@@ -1,0 +1,50 @@
+#pragma once
+// Helpers shared by the test files: a fresh temporary directory per test, and whether this build
+// runs under AddressSanitizer (which reserves terabytes of address space, so tests that lower
+// RLIMIT_AS cannot run there).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <system_error>
+#include <unistd.h>
+
+#if defined(__SANITIZE_ADDRESS__)
+#define PANELRAD_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define PANELRAD_ASAN 1
+#endif
+#endif
+
+namespace panelrad::testing {
+
+/// A fixture with a fresh directory per test (temp/PREFIX_PID_TESTNAME), removed afterwards.
+class TempDirTest : public ::testing::Test {
+ protected:
+  explicit TempDirTest(std::string prefix) : prefix_(std::move(prefix)) {}
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = std::filesystem::temp_directory_path() /
+           (prefix_ + "_" + std::to_string(::getpid()) + "_" + info->name());
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override {
+    std::error_code ec;
+    std::filesystem::remove_all(dir_, ec);
+  }
+  /// Writes `text` byte for byte to dir/name and returns the path.
+  std::string write(const std::string& name, const std::string& text) {
+    const std::string path = (dir_ / name).string();
+    std::ofstream(path, std::ios::binary) << text;
+    return path;
+  }
+  std::filesystem::path dir_;
+
+ private:
+  std::string prefix_;
+};
+
+}  // namespace panelrad::testing
