@@ -3,14 +3,14 @@
 //   paper's (eta, M) = (0.2, 2) and with the automatic setting,
 // all to the same accuracy. Prints times, errors, speed-ups and peak memory; optional CSV.
 //   usage: section51 [--levels L0 L1] [--threads T] [--csv PATH] [--skip-lu]
-#include <panelrad/auto_parameters.hpp>
-#include <panelrad/collocation.hpp>
-#include <panelrad/dense_operator.hpp>
-#include <panelrad/fast_operator.hpp>
-#include <panelrad/resources.hpp>
-#include <panelrad/scene.hpp>
-#include <panelrad/solvers.hpp>
-#include <panelrad/text_output.hpp>
+#include <panelrad/operator/auto_parameters.hpp>
+#include <panelrad/operator/collocation.hpp>
+#include <panelrad/operator/dense_operator.hpp>
+#include <panelrad/operator/fast_operator.hpp>
+#include <panelrad/support/resources.hpp>
+#include <panelrad/scene/scene.hpp>
+#include <panelrad/solve/solvers.hpp>
+#include <panelrad/io/text_output.hpp>
 
 #include <cstdio>
 #include <cstdlib>

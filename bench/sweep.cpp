@@ -11,14 +11,14 @@
 // Reference: the dense operator with the exact near rule (the discretization error of the
 // centroid method at that n); `deviation` = max_k |u_n(P_k) - u_ref(P_k)|, which bounds how far a
 // run's error can be from the discretization error (triangle inequality).
-#include <panelrad/collocation.hpp>
+#include <panelrad/operator/collocation.hpp>
 #include <panelrad/geometry/builtin_scenes.hpp>
 #include <panelrad/geometry/validation.hpp>
-#include <panelrad/operator_factory.hpp>
-#include <panelrad/resources.hpp>
-#include <panelrad/scene.hpp>
-#include <panelrad/solvers.hpp>
-#include <panelrad/text_output.hpp>
+#include <panelrad/operator/operator_factory.hpp>
+#include <panelrad/support/resources.hpp>
+#include <panelrad/scene/scene.hpp>
+#include <panelrad/solve/solvers.hpp>
+#include <panelrad/io/text_output.hpp>
 
 #include <algorithm>
 #include <cmath>

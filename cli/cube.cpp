@@ -2,10 +2,10 @@
 #include "commands.hpp"
 #include "options.hpp"
 
-#include <panelrad/auto_parameters.hpp>
-#include <panelrad/cube_example.hpp>
-#include <panelrad/resources.hpp>
-#include <panelrad/text_output.hpp>
+#include <panelrad/operator/auto_parameters.hpp>
+#include <panelrad/paper/cube_example.hpp>
+#include <panelrad/support/resources.hpp>
+#include <panelrad/io/text_output.hpp>
 
 #include <filesystem>
 

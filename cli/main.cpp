@@ -1,7 +1,7 @@
 // panelrad command-line program: dispatches sub-commands.
 #include "commands.hpp"
 
-#include <panelrad/version.hpp>
+#include <panelrad/support/version.hpp>
 
 #include <cstring>
 #include <iostream>

@@ -1,7 +1,7 @@
 #include "options.hpp"
 
 #include <panelrad/quadrature/triangle_rules.hpp>
-#include <panelrad/resources.hpp>
+#include <panelrad/support/resources.hpp>
 
 #include <cerrno>
 #include <cmath>

@@ -3,12 +3,12 @@
 #include "commands.hpp"
 #include "options.hpp"
 
-#include <panelrad/auto_parameters.hpp>
-#include <panelrad/resources.hpp>
-#include <panelrad/scene_file.hpp>
-#include <panelrad/scene_output.hpp>
-#include <panelrad/scene_solver.hpp>
-#include <panelrad/text_output.hpp>
+#include <panelrad/operator/auto_parameters.hpp>
+#include <panelrad/support/resources.hpp>
+#include <panelrad/io/scene_file.hpp>
+#include <panelrad/io/scene_output.hpp>
+#include <panelrad/solve/scene_solver.hpp>
+#include <panelrad/io/text_output.hpp>
 
 #include <algorithm>
 #include <cstdio>

@@ -16,11 +16,11 @@
 // per level of Table 1 (ratios ~1.9). The run to level 3 takes about 0.4 s.
 // 1.6 leaves room for the fast method's small far-field error without accepting a method that
 // does not converge at O(h).
-#include <panelrad/auto_parameters.hpp>
-#include <panelrad/collocation.hpp>
-#include <panelrad/operator_factory.hpp>
-#include <panelrad/scene.hpp>
-#include <panelrad/solvers.hpp>
+#include <panelrad/operator/auto_parameters.hpp>
+#include <panelrad/operator/collocation.hpp>
+#include <panelrad/operator/operator_factory.hpp>
+#include <panelrad/scene/scene.hpp>
+#include <panelrad/solve/solvers.hpp>
 
 #include <chrono>
 #include <cmath>

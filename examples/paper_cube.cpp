@@ -8,11 +8,11 @@
 // compares max_k |u(P_k) - u_n(P_k)| with the paper's value.
 //   usage: paper_cube [level]   (default 3: n = 12 * 4^3 = 768; levels 0..5 have a paper value)
 // Exit status 0 when the error is within 2% of Table 1, 1 otherwise (or on an error).
-#include <panelrad/auto_parameters.hpp>
-#include <panelrad/collocation.hpp>
-#include <panelrad/operator_factory.hpp>
-#include <panelrad/scene.hpp>
-#include <panelrad/solvers.hpp>
+#include <panelrad/operator/auto_parameters.hpp>
+#include <panelrad/operator/collocation.hpp>
+#include <panelrad/operator/operator_factory.hpp>
+#include <panelrad/scene/scene.hpp>
+#include <panelrad/solve/solvers.hpp>
 
 #include <chrono>
 #include <cmath>

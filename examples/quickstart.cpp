@@ -4,12 +4,12 @@
 // E = c (1 - rho): on a closed convex surface the radiosity is then exactly u = c everywhere
 // (the rows of K sum to rho, paper Lemma 1), so the printed error is the fast method's own.
 //   usage: quickstart [level]   (default 4: n = 20 * 4^4 = 5120 elements)
-#include <panelrad/collocation.hpp>
-#include <panelrad/fast_operator.hpp>
+#include <panelrad/operator/collocation.hpp>
+#include <panelrad/operator/fast_operator.hpp>
 #include <panelrad/geometry/builtin_scenes.hpp>
 #include <panelrad/geometry/validation.hpp>
-#include <panelrad/scene.hpp>
-#include <panelrad/solvers.hpp>
+#include <panelrad/scene/scene.hpp>
+#include <panelrad/solve/solvers.hpp>
 
 #include <cstdio>
 #include <cstdlib>

@@ -13,9 +13,9 @@
 // Exit status 0 when max |u - c_ch| <= 1e-3 c_ch in every channel, 1 otherwise (or on an error).
 #include <panelrad/geometry/builtin_scenes.hpp>
 #include <panelrad/geometry/validation.hpp>
-#include <panelrad/scene_file.hpp>
-#include <panelrad/scene_output.hpp>
-#include <panelrad/scene_solver.hpp>
+#include <panelrad/io/scene_file.hpp>
+#include <panelrad/io/scene_output.hpp>
+#include <panelrad/solve/scene_solver.hpp>
 
 #include <algorithm>
 #include <cmath>

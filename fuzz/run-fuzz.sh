@@ -3,7 +3,7 @@
 # bounded time, seeded with the shipped meshes (examples/meshes) and the regression inputs
 # (tests/data/fuzz). Exits non-zero when the fuzzer finds a crash, a sanitizer report, an
 # uncaught exception other than MeshError, a timeout or excessive memory; the input is then in
-# $BUILD/artifacts/ (turn it into a test in tests/test_fuzz_regressions.cpp).
+# $BUILD/artifacts/ (turn it into a test in tests/geometry/test_fuzz_regressions.cpp).
 # Usage: fuzz/run-fuzz.sh [SECONDS (default 60)] [BUILD_DIR (default build-fuzz)]
 set -euo pipefail
 cd "$(dirname "$0")/.."

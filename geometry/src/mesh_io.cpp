@@ -5,7 +5,7 @@
 // truncated files silently and give no line numbers, so a bad file could become a silently wrong
 // mesh. The own tokenizer below knows the line of every token and refuses anything it does not
 // understand; the shared vertex structure is built here directly. Measured with Debian's OpenMesh
-// 9.0 (tests/test_mesh_io.cpp, AgreesWithOpenMeshReader): an OFF with '#' comment lines is read
+// 9.0 (tests/geometry/test_mesh_io.cpp, AgreesWithOpenMeshReader): an OFF with '#' comment lines is read
 // as an empty mesh, an OFF with per-face colours stops after its first face, both without an
 // error, and coordinates are parsed in single precision. OpenMesh's reader stays as an independent
 // cross-check (read_mesh_with_openmesh, openmesh_io.cpp): both agree on well-formed files.

@@ -1,5 +1,5 @@
 // An outside program using the installed panelrad package.
-#include <panelrad/version.hpp>
+#include <panelrad/support/version.hpp>
 
 #include <iostream>
 

@@ -1,5 +1,7 @@
 #pragma once
 // Plain mesh types shared by every layer. No CGAL here: geometry/src is the only place CGAL lives.
+#include <panelrad/geometry/error.hpp>
+
 #include <Eigen/Core>
 
 #include <array>
@@ -27,9 +29,9 @@ struct TriangleMesh {
 };
 
 /// Any problem with mesh input or geometry: the message names what, where and which rule.
-class MeshError : public std::runtime_error {
+class MeshError : public Error {
  public:
-  using std::runtime_error::runtime_error;
+  using Error::Error;
 };
 
 /// Surface area (sum of triangle areas, double precision).

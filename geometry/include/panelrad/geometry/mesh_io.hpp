@@ -51,12 +51,6 @@ TriangleMesh read_mesh(const std::string& path, std::vector<std::string>* notes 
 TriangleMesh read_obj_with_materials(const std::string& path, ObjMaterialUse& materials,
                                      std::vector<std::string>* notes = nullptr, const TextReadOptions& options = {});
 
-/// The same file read by OpenMesh's readers (OpenMesh::IO, double precision), fan-triangulated
-/// like read_mesh but without merging vertices: an independent second reader, to cross-check
-/// read_mesh on well-formed files. Throws MeshError when OpenMesh cannot read the file or reads
-/// no face (its OFF reader takes a file with '#' comment lines for an empty mesh, without error).
-TriangleMesh read_mesh_with_openmesh(const std::string& path);
-
 /// The same from a stream; `name` is used in messages. The stream is read up to the size limit.
 TriangleMesh read_off(std::istream& in, const std::string& name, std::vector<std::string>* notes = nullptr,
                       const TextReadOptions& options = {});

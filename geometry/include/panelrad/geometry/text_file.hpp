@@ -22,6 +22,8 @@
 // byte of OBJ text (measured: 557 MB peak for a 107 MB OBJ of 2 million vertices and 2 million
 // triangles); a 1 GiB OBJ holds some 20 million vertices, far more facets than a solve can use,
 // and its reading stays within about 6 GB.
+#include <panelrad/geometry/error.hpp>
+
 #include <cstdint>
 #include <iosfwd>
 #include <stdexcept>
@@ -39,9 +41,9 @@ struct TextReadOptions {
 
 /// A text input file that cannot be read as such: the message names the file, what it is or what
 /// is wrong with it, and for a NUL byte its line and byte offset.
-class TextFileError : public std::runtime_error {
+class TextFileError : public Error {
  public:
-  using std::runtime_error::runtime_error;
+  using Error::Error;
 };
 
 /// The whole text of the regular file `path`. `role` says what the file is for, in messages

@@ -1,0 +1,130 @@
+#pragma once
+// Automatic parameters: the method, near rule, eta of (41) and Taylor degree M
+// of (44) for a scene of a given size, so that the solution stays within 5% of the
+// discretization error at the least cost measured by bench/sweep (bench/results/sweep.csv).
+//
+// Criterion ("faithful"): with u_ref the dense solution with the exact near rule at the same n
+// (the centroid method's own answer), a setting is accepted when
+//     max_k |u_n(P_k) - u_ref(P_k)| <= 0.05 max_k |u(P_k) - u_ref(P_k)|,
+// which implies error <= 1.05 x discretization error by the triangle inequality, without relying
+// on a lucky cancellation of far-field and discretization errors (M = 1 runs often show a smaller
+// error than the reference for that reason; cf. the paper's Table 2).
+//
+// The size is measured by the equivalent level lambda = log2(0.8165 / (h / diam)), h the mesh
+// size (longest edge), diam the surface's diameter: the paper's cube at level l has
+// h / diam = sqrt(2/3) 2^-l, so lambda = l; the hexagonal prism (r = 1, height 1) at level l has
+// lambda = l + 0.21. The discretization error halves per level (Table 1) while the far-field
+// error of a fixed (eta, M) does not, so the admissible settings tighten as lambda grows.
+//
+// The rule, from bench/results/sweep.csv (bench/sweep --full: 2 cores, Intel Xeon, shared with
+// other work, so timings are noisy; deviations are deterministic). Deviation of the fast method
+// with the exact near field from the dense exact solution, cube (error: 3.77e-3 at n = 3072,
+// 1.92e-3 at n = 12288, so the 5% margins are 1.9e-4 and 9.6e-5):
+//     (eta, M)      n = 3072   n = 12288   total s (12288)   peak MB (12288)
+//     (0.5, 4)      6.9e-4     6.9e-4      4.7               191     not within 5%
+//     (0.5, 6)      5.5e-5     5.5e-5      5.9               299     within 5%
+//     (0.3, 2)      3.6e-4     3.6e-4      5.0               223     not within 5%
+//     (0.3, 4)      3.2e-5     3.2e-5      7.3               440     within 5%
+//     (0.2, 2)      7.8e-5     8.5e-5      5.3               365     within 5%
+//     (0.1, 2)      4.2e-6     4.7e-6      11.4              1218    within 5%
+//     (0.4, 6)      1.3e-5     1.7e-5      0.9 (setup 0.52)  405     within 5% (prism 5120: 3.0e-5)
+//     (0.4, 8)      1.8e-6     2.3e-6      2.0 (setup 1.45)  ~520    within 5% (prism 5120: 4.0e-6)
+//   (the last two rows from a later, quieter run of bench/sweep --etas 0.5,0.4 --degrees 6,8)
+//   dense exact: 3.0 s at n = 3072, 51 s at n = 12288 (1215 MB).
+// The deviation of a fixed (eta, M) does not shrink with n (it is the Taylor remainder, ~eta^(M+1)
+// relative to |u|), while the discretization error halves per level: each setting is good up to
+// some level.
+//
+// The product's target. Those deviations are for the cube's smooth solution at rho_max 0.5; a
+// scene's solution may oscillate, and its equation may be worse conditioned. The product's error
+// reaches the solution amplified: with (I - K) u = E, (I - K_f) u_f = E and K = diag(rho) H,
+//     u - u_f = (I - K)^-1 (K - K_f) u_f,   ||(I - K)^-1||_inf <= 1 / (1 - rho_max)   (11),
+// and ||(K - K_f) v||_inf <= delta max_k (K|v|)_k <= delta rho_max ||v||_inf, delta the product's
+// relative error (FastSelfCheck: the worst of smooth, oscillating, facet-wise and random vectors
+// on sampled exact rows), so
+//     ||u - u_f||_inf / ||u_f||_inf <= delta A(rho_max),   A(rho) = rho / (1 - rho).
+// The target is 5% of the discretization error scale e_h = 0.025 (h/diam) ||u||_inf, the
+// cube's measured error (Table 1: 3.77e-3 / 3 at h/diam 0.0510, 1.92e-3 / 3 at 0.0255; ||u|| = 3):
+//     delta <= delta* = 0.05 * 0.025 (h/diam) / max(1, A(rho_max)) = 1.25e-3 (h/diam) / max(1, A).
+// A scene's own discretization error need not grow with A (a constant solution on a closed
+// surface is reproduced exactly: H_n 1 = 1), so the target does not count on it. For
+// rho_max <= 0.5 the factor stays 1 (never looser than at the cube's rho_max 0.5). Example: an
+// icosahedron with rho = 0.6, 0.3, 0.9 per channel at level 3 (h/diam 0.0446, lambda 4.19) was
+// given eta 0.5, M 6 and deviated 9.4e-4 in the rho = 0.9 channel (|u| = 2), 8.4 times
+// 0.05 e_h; with A(0.9) = 9 it now gets delta* = 6.2e-6.
+//
+// The rule. delta* halves per level and shrinks by A, so it is a level: the equivalent level of
+// the target, lambda_eff = lambda + log2 max(1, A(rho_max)), and delta* = 1.02e-3 2^-lambda_eff.
+// Self-check values on the cube (n-independent; n = 3072 and 12288): (0.5, 6) 1.5e-4 (worst
+// vector cos 7x + sin(5y) z; v = 1: 5.1e-5), (0.4, 6) 2.2e-5, (0.4, 8) 4.1e-6, (0.4, 10)
+// 3.2e-7, (0.4, 12) 3.8e-8; their deviations at n = 3072: 5.5e-5, 1.3e-5, 1.8e-6, 2.0e-7,
+// 3.1e-8. Each setting is used while its check is below delta*, i.e. lambda_eff below:
+//   n <= 768: dense, exact near field (whole solve < 0.1 s, no far-field error at all);
+//   lambda_eff < 2.5:  fast, exact, eta 0.5, M 6  (delta* 1.8e-4 at 2.5);
+//   lambda_eff < 5.5:  fast, exact, eta 0.4, M 6  (delta* 2.3e-5 at 5.5);
+//   lambda_eff < 7.5:  fast, exact, eta 0.4, M 8  (5.6e-6);
+//   lambda_eff < 10.5: fast, exact, eta 0.4, M 10 (7.0e-7);
+//   otherwise:         fast, exact, eta 0.4, M 12 (valid to lambda_eff ~ 14.7; beyond it, and on
+//     scenes whose product is less accurate than the cube's, the self-check tightens eta).
+//   So the cube (rho_max 0.5) at levels 4-5 gets (0.4, 6) and at 6-7 (0.4, 8): one step stricter
+//   than the deviations alone asked ((0.5, 6) and (0.4, 6)), since (0.5, 6) multiplies an
+//   oscillating v by 1.5e-4 relative error, 4.7 times delta* at level 5.
+//   Large eta with a higher M beats a small eta: far pairs fall like 1/eta^2 (89, 143, 258, 510
+//   per row at eta 0.5, 0.4, 0.3, 0.2 for n = 12288) while the terms grow like M^2/2, and the
+//   stored coefficients of eta 0.1 would need ~20 GB at n = 196,608.
+// The exact near rule always: quadrature with mu = 2 deviates by 3e-5 (cube) to 1.4e-4 (prism),
+// a third of the prism's margin at n = 5120 and growing relative to it with n; mu = 1 is never
+// within 5% for n >= 192 (its dense deviation is 18-140% of the discretization error); mu = 3 was
+// not reliably cheaper than the closed form in the measurements.
+#include <panelrad/geometry/mesh.hpp>
+#include <panelrad/operator/operator_factory.hpp>
+
+#include <string>
+
+namespace panelrad {
+
+/// What the rule needs to know about a discretized scene.
+struct ProblemSize {
+  geometry::Index n = 0;  ///< number of elements (collocation points)
+  double mesh_size = 0;   ///< h: longest element edge (section 3)
+  double diameter = 0;    ///< diameter of the surface (bounding-box diagonal)
+  /// lambda = log2(sqrt(2/3) diam / h): the paper cube's level for the same relative mesh size.
+  double equivalent_level() const;
+};
+
+/// The size of `mesh` refined `level` times (n = 4^level n0; midpoint subdivision halves every
+/// edge, so h = longest input edge / 2^level). Throws std::invalid_argument for level < 0 or an
+/// empty mesh.
+ProblemSize problem_size(const geometry::TriangleMesh& mesh, int level);
+
+/// max(1, A(rho_max)), A(rho) = rho / (1 - rho): the bound on the amplification of the
+/// product's relative error into the solution's (header), never below its value 1 at the cube's
+/// rho_max 0.5. rho_max is the largest reflectivity over all elements and channels; outside
+/// [0, 1) (or NaN) it is a std::invalid_argument.
+double conditioning_factor(double rho_max);
+
+/// Largest reflectivity of the paper's cube (31): the default for callers that solve it.
+inline constexpr double kPaperCubeMaxReflectivity = 0.5;
+
+/// The rule above, at lambda_eff = lambda + log2 conditioning_factor(rho_max). `margin` is the
+/// accepted excess over the discretization error; only margins >= 0.05 were measured (a looser
+/// margin gets the same, safe choice); a smaller one, a size that is not finite and positive, or
+/// rho_max outside [0, 1), is a std::invalid_argument.
+OperatorOptions choose_parameters(const ProblemSize& size, double margin = 0.05,
+                                  double rho_max = kPaperCubeMaxReflectivity);
+
+/// delta* of the header: the largest FastOperator::self_check relative product error accepted
+/// for automatic parameters, 0.05 * 0.025 (h/diam) / conditioning_factor(rho_max), so that the
+/// bound delta A(rho_max) on the solution's relative deviation stays within 5% of the
+/// discretization error scale 0.025 h/diam. A check above it makes --accuracy auto tighten.
+double self_check_threshold(const ProblemSize& size, double rho_max = kPaperCubeMaxReflectivity);
+
+/// One step stricter than `options` (for a self-check that failed): dense stays dense; the fast
+/// method first raises M by one up to 6, then lowers eta along 0.5, 0.3, 0.2, 0.1 (keeping M).
+/// Returns `options` unchanged when nothing is stricter (eta 0.1 and M >= 6).
+OperatorOptions tighten_parameters(const OperatorOptions& options);
+
+/// "dense, exact near field" / "fast, exact near field, eta 0.3, M 4".
+std::string describe_parameters(const OperatorOptions& options);
+
+}  // namespace panelrad

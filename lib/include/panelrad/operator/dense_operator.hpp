@@ -1,0 +1,35 @@
+#pragma once
+// The dense matrix K_n of (33): (K_n)_ij = rho(P_i)/pi Int_Delta_j G(P_i,Q) dS_Q, assembled in
+// parallel. The reference path: accurate, O(n^2) memory and time.
+#include <panelrad/operator/collocation.hpp>
+#include <panelrad/operator/linear_operator.hpp>
+#include <panelrad/operator/near_field.hpp>
+
+#include <Eigen/Core>
+
+namespace panelrad {
+
+class DenseOperator final : public RadiosityOperator {
+ public:
+  using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+  /// Refuses (ResourceError, a std::runtime_error, with the estimate) a matrix that would not fit in memory.
+  DenseOperator(const Collocation& collocation, const NearFieldOptions& options);
+
+  /// Bytes needed for the matrix of order n.
+  static std::size_t matrix_bytes(geometry::Index n);
+  /// Throws ResourceError (with the estimate and what is available) when the matrix of
+  /// order n would not fit in memory; called before anything is allocated or computed.
+  static void check_fits(geometry::Index n);
+
+  geometry::Index size() const override { return static_cast<geometry::Index>(K_.rows()); }
+  void apply(const Eigen::VectorXd& v, Eigen::VectorXd& y) const override;
+  std::string name() const override { return "dense"; }
+  std::size_t bytes() const override { return matrix_bytes(size()); }
+  const Matrix& matrix() const { return K_; }
+
+ private:
+  Matrix K_;
+};
+
+}  // namespace panelrad

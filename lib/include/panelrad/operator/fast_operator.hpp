@@ -1,0 +1,160 @@
+#pragma once
+// The fast product K_n v of section 4 (panel clustering, Hackbusch & Nowak): for each collocation
+// point P_i the minimal admissible covering (42) of the surface by clusters of the tree U (40):
+// admissible clusters (41) are taken whole and integrated by the degree-M Taylor far field
+// (44)-(48); non-admissible leaves form the near field (43), integrated once at setup and stored
+// sparse. Clusters coplanar with P_i contribute exactly 0 and are skipped; rows with rho = 0 too.
+#include <panelrad/operator/collocation.hpp>
+#include <panelrad/operator/far_field.hpp>
+#include <panelrad/support/large_buffer.hpp>
+#include <panelrad/operator/linear_operator.hpp>
+#include <panelrad/operator/near_field.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace panelrad {
+
+struct FastOptions {
+  double eta = 0.2;   ///< admissibility parameter of (41), in (0, 1)
+  int degree = 2;     ///< Taylor degree M of (44), 0..12
+  NearFieldOptions near;
+  /// Far-field coefficients are stored when they take at most this many bytes (0: automatic,
+  /// half of the available memory); otherwise they are recomputed in every product.
+  std::size_t far_storage_limit = 0;
+  /// Setup is refused (std::runtime_error with the estimate) before any large allocation when
+  /// its estimated peak memory exceeds this many bytes (0: the memory available).
+  std::size_t memory_limit = 0;
+  /// Called when a setup stage starts (cluster geometry, near field, far field), with a line
+  /// saying what it does, e.g. for progress on stderr. May be empty.
+  std::function<void(const std::string&)> progress;
+};
+
+/// What setup found and stored: the covering's counts.
+struct FastStatistics {
+  std::size_t near_pairs = 0;          ///< (P_i, element) pairs in the near field
+  std::size_t far_pairs = 0;           ///< (P_i, cluster) pairs in the far field
+  std::size_t skipped_coplanar = 0;    ///< clusters skipped as coplanar with P_i (whole subtrees)
+  std::size_t skipped_rows = 0;        ///< rows with rho(P_i) = 0, not computed
+  bool far_stored = false;             ///< coefficients stored (true) or recomputed per product
+  std::size_t bytes = 0;               ///< bytes held by the operator
+  double geometry_s = 0;   ///< setup: cluster frames and element moments
+  double covering_s = 0;   ///< setup: minimal admissible coverings (42) and near-field integrals (43)
+  double far_s = 0;        ///< setup: far-field Taylor coefficients (44)-(45), when stored
+};
+
+/// One test vector of the self-check and its worst error over the sampled rows.
+struct SelfCheckVector {
+  std::string name;            ///< what v is, e.g. "cos 7x + sin(5y) z"
+  double relative_error = 0;   ///< max_k |(K_fast v)_k - (K v)_k| / max_k (K |v|)_k over the sampled rows k
+  geometry::Index row = -1;    ///< the row k where the maximum is attained
+};
+
+/// The operator's own check of its accuracy on sampled rows (exact rows are O(n) each).
+///
+/// What it measures. The solution's error from the product's error: with (I - K) u = E and
+/// (I - K_f) u_f = E, (I - K)(u - u_f) = (K - K_f) u_f, so by (11)
+///     ||u - u_f||_inf <= ||(K - K_f) u_f||_inf / (1 - rho_max).
+/// The check estimates delta = ||(K - K_f) v||_inf / ||K v||_inf for vectors v like the
+/// solution: smooth (constant, linear, quadratic in the coordinates scaled to the bounding box),
+/// oscillating (cos 7x + sin(5y) z, the same scaled coordinates), piecewise constant by facet
+/// (the solution jumps where rho or E changes from facet to facet) and rough (a random +-1
+/// vector with a fixed seed: the worst case of the row sums of |K - K_f|, the operator's
+/// inf-norm). The maximum over the vectors is the check value.
+///
+/// Rows sampled: `samples` rows, half evenly spaced over the element order (which runs facet by
+/// facet), half among the elements at a corner of an input triangle (next to the surface's
+/// edges and corners, where the near field is largest and other facets are nearest); every row
+/// when samples >= n. Deterministic.
+///
+/// Relative to max_k (K |v|)_k over the sampled rows k (inf-norm relative; K >= 0 entrywise, so
+/// this is max_k |(K v)_k| for v >= 0). For a sign-changing v it does not divide by the
+/// cancellations in K v (a random +-1 v has |K v| ~ n^-1/2 K|v|, which would make the check grow
+/// with n without any change in the solution's error); and it is the scale of the bound:
+/// ||(K - K_f) v||_inf <= delta max_k (K|v|)_k <= delta rho_max ||v||_inf, so with v = u_f
+///     ||u - u_f||_inf / ||u_f||_inf <= delta rho_max / (1 - rho_max),
+/// delta the check value (an estimate: sampled rows and vectors like u_f, not a proof).
+struct FastSelfCheck {
+  int rows = 0;                              ///< rows sampled
+  double relative_error = 0;                 ///< max over `vectors` (+inf when a product is not finite)
+  std::vector<SelfCheckVector> vectors;      ///< one entry per test vector, in self_check_vectors() order
+  std::vector<geometry::Index> sampled_rows; ///< the rows compared, ascending
+  double seconds = 0;
+};
+
+class FastOperator final : public RadiosityOperator {
+ public:
+  FastOperator(const Collocation& collocation, const FastOptions& options);
+
+  geometry::Index size() const override { return n_; }
+  void apply(const Eigen::VectorXd& v, Eigen::VectorXd& y) const override;
+  std::string name() const override { return "fast"; }
+  std::size_t bytes() const override { return stats_.bytes; }
+  const FastStatistics& statistics() const { return stats_; }
+  const FastOptions& options() const { return options_; }
+
+  /// Measures the product's real error on `samples` sampled rows (FastSelfCheck) against the
+  /// exact closed-form rows (near field and far field together), for every self_check_vectors().
+  FastSelfCheck self_check(int samples = 32) const;
+
+  /// The test vectors of self_check, with their names: deterministic functions of the
+  /// collocation points (and facets) of this operator.
+  std::vector<std::pair<std::string, Eigen::VectorXd>> self_check_vectors() const;
+
+  /// Bytes the operator will hold without far-field coefficients, and the far-field pairs, from
+  /// the coverings of up to 256 evenly spaced rows (cheap: no integrals). For refusing sizes that
+  /// will not fit before allocating.
+  struct MemoryEstimate {
+    std::size_t bytes = 0;         ///< held after setup, coefficients not stored
+    std::size_t list_bytes = 0;    ///< of which near/far lists (held twice during setup)
+    std::size_t far_pairs = 0;     ///< estimated (point, cluster) pairs in the far field
+    std::size_t coefficient_bytes = 0;  ///< far_pairs x terms x 8, if stored
+  };
+  static MemoryEstimate estimate_memory(const Collocation& collocation, double eta, int degree);
+  /// Bytes of the arrays whose size depends only on n, the number of clusters and M (frames,
+  /// moments, row data, row starts): MemoryEstimate::bytes without the near/far lists.
+  static std::size_t fixed_bytes(std::size_t n, std::size_t clusters, int degree);
+
+  /// Cluster ids of the far field and element ids of the near field of row i (for tests: the
+  /// covering plus the skipped coplanar clusters must partition the surface). Cluster id =
+  /// level_offset(l) + k.
+  std::vector<geometry::Index> far_clusters(geometry::Index i) const;
+  std::vector<geometry::Index> near_elements(geometry::Index i) const;
+  /// Global id of cluster k of level l and its inverse.
+  geometry::Index cluster_id(int level, geometry::Index k) const { return level_offset_[static_cast<std::size_t>(level)] + k; }
+  std::pair<int, geometry::Index> cluster_of_id(geometry::Index id) const;
+
+ private:
+  void compute_moments(const Eigen::VectorXd& v, std::vector<double>& moments) const;
+  void far_coefficients(geometry::Index i, geometry::Index cluster, double* c) const;
+  double apply_row(geometry::Index i, const Eigen::VectorXd& v, const std::vector<double>& moments,
+                   double* scratch) const;
+
+  std::shared_ptr<const geometry::ClusterTree> tree_;
+  FastOptions options_;
+  geometry::Index n_ = 0;
+  int terms_ = 0;                                 // (M+1)(M+2)/2
+  std::vector<geometry::Index> level_offset_;     // first global id of each level
+  std::vector<double> rho_;                       // rho(P_i)
+  std::vector<Vec3> point_, normal_;              // P_i, n_P
+  double unit_scale_ = 1;                         // far field in units of 2^k ~ diameter (exact scaling)
+  std::vector<PlaneFrame> frame_;                 // per cluster: origin A(tau) (scaled), axes of its plane
+  std::vector<std::array<double, 2>> to_parent_;  // per non-root cluster: its A in parent's frame
+  std::vector<double> element_moments_;           // per element: Int_Delta x^p y^q dS about A(Delta)
+  // Near field (CSR over rows): element index and rho_i/pi Int G.
+  std::vector<std::int64_t> near_start_;
+  std::vector<geometry::Index> near_col_;
+  std::vector<double> near_val_;
+  // Far field (CSR over rows): cluster id and, when stored, the rho-scaled Taylor coefficients.
+  std::vector<std::int64_t> far_start_;
+  std::vector<geometry::Index> far_cluster_;
+  LargeBuffer far_coef_;                         // uninitialized, huge pages, filled in parallel
+  FastStatistics stats_;
+};
+
+}  // namespace panelrad

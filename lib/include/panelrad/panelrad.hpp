@@ -1,0 +1,27 @@
+#pragma once
+// panelrad: the radiosity equation (1) on polyhedral scenes, by centroid collocation (section 3)
+// and the fast matrix-vector product of section 4. Equation, table and section numbers in
+// panelrad's comments refer to K. Atkinson and D. Chien, "A fast matrix-vector multiplication
+// method for solving the radiosity equation", Advances in Computational Mathematics 12 (2000).
+//
+// The common path: a scene (scene/), its solution (solve/), and its files (io/, target
+// panelrad::io). Link panelrad::panelrad and panelrad::io.
+#include <panelrad/support/error.hpp>
+#include <panelrad/support/resources.hpp>
+#include <panelrad/support/version.hpp>
+
+#include <panelrad/scene/channel_scene.hpp>
+#include <panelrad/scene/scene.hpp>
+
+#include <panelrad/operator/auto_parameters.hpp>
+#include <panelrad/operator/collocation.hpp>
+#include <panelrad/operator/dense_operator.hpp>
+#include <panelrad/operator/fast_operator.hpp>
+#include <panelrad/operator/operator_factory.hpp>
+
+#include <panelrad/solve/scene_solver.hpp>
+#include <panelrad/solve/solvers.hpp>
+
+#include <panelrad/io/scene_file.hpp>
+#include <panelrad/io/scene_output.hpp>
+#include <panelrad/io/text_output.hpp>

@@ -1,0 +1,69 @@
+#pragma once
+// Solvers of (I - K_n) u_n = E_n, (32), over the RadiosityOperator interface: the Neumann
+// iteration (34) with its convergence ratio (36), restarted GMRES, and dense LU (direct baseline).
+#include <panelrad/operator/dense_operator.hpp>
+#include <panelrad/support/error.hpp>
+#include <panelrad/operator/linear_operator.hpp>
+
+#include <Eigen/Core>
+
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace panelrad {
+
+/// automatic: Neumann while the contraction bound max rho (paper (10)) is at most 0.8 (each step
+/// then gains at least a factor 1.25 and the ratio (36) is reported), GMRES above (Neumann's
+/// step count grows like 1/(1 - rho), GMRES's stays bounded).
+enum class SolverKind { automatic, neumann, gmres, lu };
+SolverKind parse_solver(const std::string& name);  ///< "auto" | "neumann" | "gmres" | "lu"
+const char* to_string(SolverKind kind);
+
+struct SolverOptions {
+  SolverKind kind = SolverKind::automatic;
+  /// Stop when the estimated error ||u_n - u^(k)||_inf <= tolerance * ||u^(k)||_inf. Tie it to the
+  /// discretization error: there is no point in iterating far below it.
+  double tolerance = 1e-10;
+  int max_iterations = 1000;
+  int gmres_restart = 60;
+  /// Called after every product with K_n (products so far, current error estimate; the estimate
+  /// is 0 before the iteration has one), e.g. for progress on stderr. May be empty.
+  std::function<void(int products, double error_estimate)> progress;
+};
+
+struct SolveResult {
+  Eigen::VectorXd u;
+  std::string solver;              ///< the solver that ran
+  std::string choice;              ///< why it was chosen (automatic choice), else empty
+  int iterations = 0;              ///< products with K_n
+  double convergence_ratio = 0;    ///< Neumann: ratio (36), estimated by successive differences
+  std::vector<double> ratio_history;
+  double error_estimate = 0;       ///< bound on ||u_n - u||_inf from the iteration
+  double residual = 0;             ///< ||E - (I - K) u||_inf / ||E||_inf, one extra product
+  double seconds = 0;
+};
+
+/// Neumann iteration (34), u^(0) = 0: u^(k+1) = E + K u^(k).
+SolveResult solve_neumann(const RadiosityOperator& K, const Eigen::VectorXd& E, const SolverOptions& options);
+/// Restarted GMRES on (I - K) u = E; stops on the relative residual, mapped to an error bound
+/// with ||(I-K)^-1|| <= 1/(1 - max rho) (paper (11)).
+SolveResult solve_gmres(const RadiosityOperator& K, const Eigen::VectorXd& E, const SolverOptions& options,
+                        double max_reflectivity);
+/// Dense LU with partial pivoting of I - K_n (Eigen).
+SolveResult solve_lu(const DenseOperator& K, const Eigen::VectorXd& E);
+
+/// A stopping tolerance tied to the discretization error: the centroid method's error is O(h)
+/// (Theorem 5, (28)), about 0.03 h/diam relative on the cube (Table 1); iterating to
+/// 1e-5 h/diam keeps the iteration error near 0.03% of it. h: mesh size, diam: surface diameter.
+double discretization_tolerance(double h, double diameter);
+
+/// The solver `automatic` resolves to for this largest reflectivity (NaN: unknown -> GMRES).
+SolverKind choose_solver(double max_reflectivity);
+
+/// Dispatch on options.kind; LU needs a DenseOperator (std::invalid_argument otherwise).
+SolveResult solve(const RadiosityOperator& K, const Eigen::VectorXd& E, const SolverOptions& options,
+                  double max_reflectivity);
+
+}  // namespace panelrad

@@ -1,0 +1,72 @@
+#include <panelrad/operator/collocation.hpp>
+#include <panelrad/support/resources.hpp>
+
+#include <cmath>
+#include <exception>
+#include <string>
+#include <stdexcept>
+
+namespace panelrad {
+
+Collocation::Collocation(const Scene& scene, int level) {
+  Stopwatch clock;
+  // The tree is refused (with its estimate) when it exceeds what this process may still
+  // allocate: MemAvailable, ulimit -v and the cgroup limit (available_memory_bytes).
+  tree_ = std::make_shared<const geometry::ClusterTree>(scene.mesh(), level, available_memory_bytes());
+  tree_s_ = clock.seconds();
+  clock.restart();
+  const Index n = tree_->num_elements();
+  rho_.resize(n);
+  E_.resize(n);
+  const bool manufactured = scene.has_manufactured_solution();
+  if (manufactured) true_u_.resize(n);
+  // Each row is independent: parallel, and the values do not depend on the thread count.
+  // On bad data, report the lowest failing row whatever the thread count (deterministic message).
+  std::exception_ptr failure;
+  Index failed_row = n;
+#pragma omp parallel for schedule(dynamic, 16)
+  for (Index i = 0; i < n; ++i) {
+    try {
+      const Vec3& P = collocation_point(i);
+      const Index f = facet(i);
+      rho_[i] = scene.reflectivity(P, f);
+      if (manufactured) {
+        true_u_[i] = scene.manufactured_solution()(P, f);
+        E_[i] = scene.manufactured_emissivity(P, f, normal(i));
+      } else {
+        E_[i] = scene.emissivity(P, f);
+      }
+    } catch (...) {
+#pragma omp critical(panelrad_collocation_failure)
+      if (i < failed_row) {
+        failed_row = i;
+        failure = std::current_exception();
+      }
+    }
+  }
+  if (failure) std::rethrow_exception(failure);
+  emissivity_s_ = clock.seconds();
+}
+
+Collocation Collocation::with_row_weights(Eigen::VectorXd weights) const {
+  if (weights.size() != size()) throw std::invalid_argument("with_row_weights: weights size differs from n");
+  for (Index i = 0; i < size(); ++i)
+    if (!(std::isfinite(weights[i]) && weights[i] >= 0))
+      throw std::invalid_argument("with_row_weights: weight " + std::to_string(i) + " is not finite and >= 0");
+  Collocation c;
+  c.tree_ = tree_;
+  c.rho_ = std::move(weights);
+  c.E_ = E_;
+  c.true_u_ = true_u_;
+  c.tree_s_ = tree_s_;
+  c.emissivity_s_ = emissivity_s_;
+  return c;
+}
+
+double Collocation::max_error(const Eigen::VectorXd& v) const {
+  if (!has_true_solution()) throw std::logic_error("max_error: the scene has no manufactured solution");
+  if (v.size() != size()) throw std::invalid_argument("max_error: vector size differs from n");
+  return (true_u_ - v).lpNorm<Eigen::Infinity>();
+}
+
+}  // namespace panelrad

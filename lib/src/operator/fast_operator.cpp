@@ -1,0 +1,507 @@
+#include <panelrad/operator/fast_operator.hpp>
+#include <panelrad/geometry/admissibility.hpp>
+#include <panelrad/operator/kernel.hpp>
+#include <panelrad/quadrature/exact_integrals.hpp>
+#include <panelrad/support/resources.hpp>
+
+#include <cstdint>
+#include <cstdio>
+#include <limits>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace panelrad {
+
+using geometry::Cluster;
+using geometry::Index;
+
+namespace {
+
+/// Walks the cluster tree for collocation point P (facet fP) and reports the minimal admissible
+/// covering (42): admissible clusters (41) whole, non-admissible leaves as near field; clusters
+/// in P's own facet are coplanar with P (G = 0, section 4.2 case (a)) and skipped with their subtree.
+template <class Far, class Near, class Skip>
+void cover(const geometry::ClusterTree& tree, const Vec3& P, Index fP, double eta, Far&& far, Near&& near,
+           Skip&& skip) {
+  const int L = tree.finest_level();
+  struct Item {
+    int level;
+    Index k;
+  };
+  Item stack[4 * 64 + 8];
+  int top = 0;
+  for (Index root = tree.num_roots() - 1; root >= 0; --root) {
+    stack[top++] = {0, root};
+    while (top > 0) {
+      const Item it = stack[--top];
+      const Cluster& c = tree.cluster(it.level, it.k);
+      if (c.facet == fP) {
+        skip();
+      } else if (geometry::is_admissible(P, c.centre, c.radius, eta)) {
+        far(it.level, it.k);
+      } else if (it.level == L) {
+        near(it.k);
+      } else {
+        for (Index child = 3; child >= 0; --child) stack[top++] = {it.level + 1, 4 * it.k + child};
+      }
+    }
+  }
+}
+
+}  // namespace
+
+FastOperator::FastOperator(const Collocation& collocation, const FastOptions& options)
+    : tree_(collocation.shared_tree()), options_(options) {
+  if (!(options_.eta > 0 && options_.eta < 1))
+    throw std::invalid_argument("fast method: eta = " + std::to_string(options_.eta) + " is outside (0, 1)");
+  if (options_.degree < 0 || options_.degree > 12)
+    throw std::invalid_argument("fast method: degree M = " + std::to_string(options_.degree) + " is outside [0, 12]");
+  const geometry::ClusterTree& tree = *tree_;
+  const int L = tree.finest_level();
+  const int T = terms_ = num_taylor_terms(options_.degree);
+  const int M = options_.degree;
+  n_ = tree.num_elements();
+  {  // refuse what will not fit, before any large allocation
+    const MemoryEstimate est = estimate_memory(collocation, options_.eta, options_.degree);
+    const std::size_t peak = est.bytes + est.list_bytes;
+    const std::size_t limit = options_.memory_limit ? options_.memory_limit : available_memory_bytes();
+    if (peak > limit)
+      throw ResourceError("fast operator for n = " + std::to_string(n_) + " needs about " +
+                          format_bytes(static_cast<double>(peak)) + " during setup (" +
+                          format_bytes(static_cast<double>(est.list_bytes)) + " of near/far lists for about " +
+                          std::to_string(est.far_pairs) + " far pairs), more than the " +
+                          format_bytes(static_cast<double>(limit)) +
+                          " available; use fewer levels or a larger eta");
+  }
+  const auto stage = [&](const std::string& what) {
+    if (options_.progress) options_.progress(what);
+  };
+  Stopwatch clock;
+  stage("fast operator, n = " + std::to_string(n_) + ": cluster frames and element moments");
+
+  // The far field works in the length unit 2^k ~ diameter of the surface: G dS is invariant under
+  // scaling (G ~ length^-2), and scaling by a power of two is exact, so the Taylor coefficients
+  // (~ |P-A|^-(2+p+q)) and moments (~ R^(2+p+q)) stay far from overflow and underflow at any
+  // scene size that validation accepts (lengths 1e-75 .. 1e75), up to M = 12.
+  unit_scale_ = std::ldexp(1.0, -std::ilogb(tree.diameter()));
+  // Cluster ids, plane frames about A(tau), offsets to the parent, element moments (48).
+  level_offset_.resize(static_cast<std::size_t>(L) + 2);
+  level_offset_[0] = 0;
+  for (int l = 0; l <= L; ++l) level_offset_[static_cast<std::size_t>(l) + 1] = level_offset_[static_cast<std::size_t>(l)] + tree.level_size(l);
+  const Index num_clusters = level_offset_.back();
+  frame_.resize(static_cast<std::size_t>(num_clusters));
+  to_parent_.assign(static_cast<std::size_t>(num_clusters), {0.0, 0.0});
+  for (int l = 0; l <= L; ++l) {
+    const Index m = tree.level_size(l);
+#pragma omp parallel for schedule(static)
+    for (Index k = 0; k < m; ++k) {
+      const Cluster& c = tree.cluster(l, k);
+      const Index id = cluster_id(l, k);
+      frame_[static_cast<std::size_t>(id)] = make_plane_frame(unit_scale_ * c.centre, c.normal);
+      if (l > 0)
+        to_parent_[static_cast<std::size_t>(id)] =
+            frame_[static_cast<std::size_t>(cluster_id(l - 1, k / 4))].local(unit_scale_ * c.centre);
+    }
+  }
+  element_moments_.resize(static_cast<std::size_t>(n_) * static_cast<std::size_t>(T));
+#pragma omp parallel for schedule(static)
+  for (Index e = 0; e < n_; ++e) {
+    const Cluster& c = tree.cluster(L, e);
+    triangle_moments(frame_[static_cast<std::size_t>(cluster_id(L, e))], unit_scale_ * c.vertex[0],
+                     unit_scale_ * c.vertex[1], unit_scale_ * c.vertex[2], M,
+                     &element_moments_[static_cast<std::size_t>(e) * static_cast<std::size_t>(T)]);
+  }
+  rho_.resize(static_cast<std::size_t>(n_));
+  point_.resize(static_cast<std::size_t>(n_));
+  normal_.resize(static_cast<std::size_t>(n_));
+  for (Index i = 0; i < n_; ++i) {
+    rho_[static_cast<std::size_t>(i)] = collocation.reflectivity()[i];
+    point_[static_cast<std::size_t>(i)] = collocation.collocation_point(i);
+    normal_[static_cast<std::size_t>(i)] = collocation.normal(i);
+  }
+
+  stats_.geometry_s = clock.seconds();
+  clock.restart();
+  {
+    char eta[32];
+    std::snprintf(eta, sizeof eta, "%g", options_.eta);
+    stage("fast operator: minimal admissible coverings (42) and near field (43), eta " + std::string(eta) + ", M " +
+          std::to_string(M));
+  }
+  // One traversal per row, in blocks of rows: each block keeps its covering (and the near-field
+  // integrals, (43) first sum) locally; blocks are then concatenated in row order, so the result
+  // is identical for any thread count.
+  const NearFieldIntegrator integrate_near(options_.near, tree.mesh_size());
+  constexpr Index kBlock = 256;
+  const Index num_blocks = (n_ + kBlock - 1) / kBlock;
+  struct Block {
+    std::vector<std::int64_t> near_count, far_count;
+    std::vector<Index> near_col, far_cluster;
+    std::vector<double> near_val;
+  };
+  std::vector<Block> blocks(static_cast<std::size_t>(num_blocks));
+  std::size_t skipped = 0, skipped_rows = 0;
+  bool out_of_memory = false;
+  {
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : skipped, skipped_rows)
+    for (Index b = 0; b < num_blocks; ++b) try {
+      Block& blk = blocks[static_cast<std::size_t>(b)];
+      const Index first = b * kBlock, last = std::min(n_, first + kBlock);
+      blk.near_count.assign(static_cast<std::size_t>(last - first), 0);
+      blk.far_count.assign(static_cast<std::size_t>(last - first), 0);
+      for (Index i = first; i < last; ++i) {
+        const double rho = rho_[static_cast<std::size_t>(i)];
+        if (rho == 0) {  // the row is zero: not computed
+          ++skipped_rows;
+          continue;
+        }
+        const Vec3& P = point_[static_cast<std::size_t>(i)];
+        const Vec3& nP = normal_[static_cast<std::size_t>(i)];
+        std::int64_t nn = 0, nf = 0;
+        cover(
+            tree, P, collocation.facet(i), options_.eta,
+            [&](int l, Index k) {
+              blk.far_cluster.push_back(cluster_id(l, k));
+              ++nf;
+            },
+            [&](Index e) {
+              blk.near_col.push_back(e);
+              blk.near_val.push_back(rho * integrate_near(P, nP, tree.cluster(L, e)));  // (43), first sum
+              ++nn;
+            },
+            [&]() { ++skipped; });
+        blk.near_count[static_cast<std::size_t>(i - first)] = nn;
+        blk.far_count[static_cast<std::size_t>(i - first)] = nf;
+      }
+    } catch (const std::bad_alloc&) {
+#pragma omp atomic write
+      out_of_memory = true;
+    }
+  }
+  if (out_of_memory) {
+    blocks.clear();
+    throw ResourceError("fast operator for n = " + std::to_string(n_) +
+                        ": out of memory while building the near and far field lists (" + describe_available_memory() +
+                        "); use fewer levels or a larger eta");
+  }
+  near_start_.assign(static_cast<std::size_t>(n_) + 1, 0);
+  far_start_.assign(static_cast<std::size_t>(n_) + 1, 0);
+  for (Index b = 0; b < num_blocks; ++b) {
+    const Block& blk = blocks[static_cast<std::size_t>(b)];
+    for (std::size_t r = 0; r < blk.near_count.size(); ++r) {
+      const std::size_t i = static_cast<std::size_t>(b * kBlock) + r;
+      near_start_[i + 1] = near_start_[i] + blk.near_count[r];
+      far_start_[i + 1] = far_start_[i] + blk.far_count[r];
+    }
+  }
+  stats_.near_pairs = static_cast<std::size_t>(near_start_.back());
+  stats_.far_pairs = static_cast<std::size_t>(far_start_.back());
+  stats_.skipped_coplanar = skipped;
+  stats_.skipped_rows = skipped_rows;
+
+  // Memory: far coefficients are stored only when they fit; else recomputed in each product.
+  const std::size_t far_coef_bytes = stats_.far_pairs * static_cast<std::size_t>(T) * sizeof(double);
+  const std::size_t avail = available_memory_bytes();
+  const std::size_t limit = options_.far_storage_limit ? options_.far_storage_limit : avail / 2;
+  stats_.far_stored = far_coef_bytes <= limit;
+  near_col_.resize(stats_.near_pairs);
+  near_val_.resize(stats_.near_pairs);
+  far_cluster_.resize(stats_.far_pairs);
+#pragma omp parallel for schedule(static)
+  for (Index b = 0; b < num_blocks; ++b) {
+    Block& blk = blocks[static_cast<std::size_t>(b)];
+    const std::size_t i0 = static_cast<std::size_t>(b * kBlock);
+    std::copy(blk.near_col.begin(), blk.near_col.end(), near_col_.begin() + near_start_[i0]);
+    std::copy(blk.near_val.begin(), blk.near_val.end(), near_val_.begin() + near_start_[i0]);
+    std::copy(blk.far_cluster.begin(), blk.far_cluster.end(), far_cluster_.begin() + far_start_[i0]);
+    blk = Block{};  // release as we go
+  }
+  stats_.covering_s = clock.seconds();  // covering (42) and near field (43)
+  clock.restart();
+  stage("fast operator: far field (44)-(45), " + std::to_string(stats_.far_pairs) + " (point, cluster) pairs, " +
+        (stats_.far_stored ? "coefficients stored" : "coefficients recomputed per product (memory)"));
+  if (stats_.far_stored) {
+    try {
+      far_coef_ = LargeBuffer(stats_.far_pairs * static_cast<std::size_t>(T));
+    } catch (const std::bad_alloc&) {
+      stats_.far_stored = false;  // could not have the memory after all: recompute per product
+    }
+  }
+  if (stats_.far_stored) {
+#pragma omp parallel for schedule(dynamic, 64)
+    for (Index i = 0; i < n_; ++i)
+      for (std::int64_t j = far_start_[static_cast<std::size_t>(i)]; j < far_start_[static_cast<std::size_t>(i) + 1]; ++j)
+        far_coefficients(i, far_cluster_[static_cast<std::size_t>(j)], &far_coef_[static_cast<std::size_t>(j) * static_cast<std::size_t>(T)]);
+  }
+  stats_.far_s = clock.seconds();
+  stats_.bytes = near_col_.size() * sizeof(Index) + near_val_.size() * sizeof(double) +
+                 far_cluster_.size() * sizeof(Index) + far_coef_.bytes() +
+                 (near_start_.size() + far_start_.size()) * sizeof(std::int64_t) + frame_.size() * sizeof(PlaneFrame) +
+                 to_parent_.size() * sizeof(to_parent_[0]) + element_moments_.size() * sizeof(double) +
+                 static_cast<std::size_t>(num_clusters) * static_cast<std::size_t>(T) * sizeof(double) /* moments per product */;
+}
+
+FastOperator::MemoryEstimate FastOperator::estimate_memory(const Collocation& collocation, double eta, int degree) {
+  const geometry::ClusterTree& tree = collocation.tree();
+  const Index n = tree.num_elements();
+  const int L = tree.finest_level();
+  const std::size_t T = static_cast<std::size_t>(num_taylor_terms(degree));
+  std::size_t clusters = 0;
+  for (int l = 0; l <= L; ++l) clusters += static_cast<std::size_t>(tree.level_size(l));
+  const Index samples = std::min<Index>(n, 256);
+  std::size_t near = 0, far = 0, sampled = 0, rows = 0;
+  for (Index i = 0; i < n; ++i) rows += collocation.reflectivity()[i] != 0;
+  for (Index s = 0; s < samples; ++s) {
+    const Index i = static_cast<Index>((static_cast<std::int64_t>(s) * n + n / 2) / samples);
+    if (collocation.reflectivity()[i] == 0) continue;
+    ++sampled;
+    cover(tree, collocation.collocation_point(i), collocation.facet(i), eta, [&](int, Index) { ++far; },
+          [&](Index) { ++near; }, [] {});
+  }
+  MemoryEstimate e;
+  const double per_row = sampled ? 1.0 / static_cast<double>(sampled) : 0.0;
+  const std::size_t near_pairs = static_cast<std::size_t>(static_cast<double>(near) * per_row * static_cast<double>(rows));
+  e.far_pairs = static_cast<std::size_t>(static_cast<double>(far) * per_row * static_cast<double>(rows));
+  e.list_bytes = near_pairs * (sizeof(Index) + sizeof(double)) + e.far_pairs * sizeof(Index);
+  e.coefficient_bytes = e.far_pairs * T * sizeof(double);
+  e.bytes = e.list_bytes + fixed_bytes(static_cast<std::size_t>(n), clusters, degree);
+  return e;
+}
+
+std::size_t FastOperator::fixed_bytes(std::size_t n, std::size_t clusters, int degree) {
+  const std::size_t T = static_cast<std::size_t>(num_taylor_terms(degree));
+  // Per cluster: frame, offset to the parent, moments per product; per element: its moments,
+  // rho, P, n_P, and the near/far row starts.
+  return clusters * (sizeof(PlaneFrame) + 2 * sizeof(double) + T * sizeof(double)) +
+         n * (T * sizeof(double) + 7 * sizeof(double) + 2 * sizeof(std::int64_t));
+}
+
+std::pair<int, Index> FastOperator::cluster_of_id(Index id) const {
+  const auto it = std::upper_bound(level_offset_.begin(), level_offset_.end(), id);
+  const int level = static_cast<int>(it - level_offset_.begin()) - 1;
+  return {level, id - level_offset_[static_cast<std::size_t>(level)]};
+}
+
+// rho(P_i)/pi times the Taylor coefficients of G(P_i, .) about A(tau), (44)-(45).
+void FastOperator::far_coefficients(Index i, Index cluster, double* c) const {
+  kernel_taylor_coefficients(unit_scale_ * point_[static_cast<std::size_t>(i)], normal_[static_cast<std::size_t>(i)],
+                             frame_[static_cast<std::size_t>(cluster)], options_.degree, c);
+  const double scale = rho_[static_cast<std::size_t>(i)] / pi;
+  for (int t = 0; t < terms_; ++t) c[t] *= scale;
+}
+
+// Moments Int_tau v_n(Q) x^p y^q dS about A(tau) for every cluster (48): exact per element, then
+// gathered up the tree with a shift of centre. O(n) per product.
+void FastOperator::compute_moments(const Eigen::VectorXd& v, std::vector<double>& moments) const {
+  const geometry::ClusterTree& tree = *tree_;
+  const int L = tree.finest_level();
+  const std::size_t T = static_cast<std::size_t>(terms_);
+  moments.assign(static_cast<std::size_t>(level_offset_.back()) * T, 0.0);
+  const std::size_t leaf0 = static_cast<std::size_t>(level_offset_[static_cast<std::size_t>(L)]);
+#pragma omp parallel for schedule(static)
+  for (Index e = 0; e < n_; ++e) {
+    const double ve = v[e];
+    const double* g = &element_moments_[static_cast<std::size_t>(e) * T];
+    double* m = &moments[(leaf0 + static_cast<std::size_t>(e)) * T];
+    for (std::size_t t = 0; t < T; ++t) m[t] = ve * g[t];
+  }
+  for (int l = L - 1; l >= 0; --l) {
+    const Index size = tree.level_size(l);
+#pragma omp parallel for schedule(static)
+    for (Index k = 0; k < size; ++k) {
+      double* m = &moments[static_cast<std::size_t>(cluster_id(l, k)) * T];
+      for (Index c = 0; c < 4; ++c) {
+        const Index child = cluster_id(l + 1, 4 * k + c);
+        const auto& d = to_parent_[static_cast<std::size_t>(child)];
+        shift_moments_add(&moments[static_cast<std::size_t>(child) * T], d[0], d[1], options_.degree, m);
+      }
+    }
+  }
+}
+
+// Row i of the fast product (43) from the cluster moments of v: near field plus far field (47).
+double FastOperator::apply_row(Index i, const Eigen::VectorXd& v, const std::vector<double>& moments,
+                               double* scratch) const {
+  const std::size_t T = static_cast<std::size_t>(terms_);
+  double sum = 0;
+  for (std::int64_t j = near_start_[static_cast<std::size_t>(i)]; j < near_start_[static_cast<std::size_t>(i) + 1]; ++j)
+    sum += near_val_[static_cast<std::size_t>(j)] * v[near_col_[static_cast<std::size_t>(j)]];
+  for (std::int64_t j = far_start_[static_cast<std::size_t>(i)]; j < far_start_[static_cast<std::size_t>(i) + 1]; ++j) {
+    const Index cl = far_cluster_[static_cast<std::size_t>(j)];
+    const double* coef;
+    if (stats_.far_stored) {
+      coef = &far_coef_[static_cast<std::size_t>(j) * T];
+    } else {
+      far_coefficients(i, cl, scratch);
+      coef = scratch;
+    }
+    const double* m = &moments[static_cast<std::size_t>(cl) * T];
+    for (std::size_t t = 0; t < T; ++t) sum += coef[t] * m[t];  // (47)
+  }
+  return sum;
+}
+
+void FastOperator::apply(const Eigen::VectorXd& v, Eigen::VectorXd& y) const {
+  if (v.size() != n_) throw std::invalid_argument("FastOperator::apply: vector size differs from n");
+  std::vector<double> moments;
+  compute_moments(v, moments);
+  y.resize(n_);
+#pragma omp parallel
+  {
+    std::vector<double> scratch(static_cast<std::size_t>(terms_));
+#pragma omp for schedule(dynamic, 256)
+    for (Index i = 0; i < n_; ++i) y[i] = apply_row(i, v, moments, scratch.data());
+  }
+}
+
+std::vector<std::pair<std::string, Eigen::VectorXd>> FastOperator::self_check_vectors() const {
+  std::vector<std::pair<std::string, Eigen::VectorXd>> out;
+  if (n_ == 0) return out;
+  const auto elements = tree_->elements();
+  // Coordinates scaled to the bounding box of the collocation points: s in [0, 1]^3.
+  Vec3 lo = point_.front(), hi = point_.front();
+  for (const Vec3& P : point_) {
+    lo = lo.cwiseMin(P);
+    hi = hi.cwiseMax(P);
+  }
+  Vec3 inv_extent;
+  for (int a = 0; a < 3; ++a) inv_extent[a] = hi[a] > lo[a] ? 1.0 / (hi[a] - lo[a]) : 0.0;
+  const auto scaled = [&](Index j) -> Vec3 { return (point_[static_cast<std::size_t>(j)] - lo).cwiseProduct(inv_extent); };
+  const auto make = [&](const std::string& name, auto&& value) {
+    Eigen::VectorXd v(n_);
+    for (Index j = 0; j < n_; ++j) v[j] = value(j);
+    out.emplace_back(name, std::move(v));
+  };
+  make("1", [](Index) { return 1.0; });
+  make("x", [&](Index j) { return scaled(j).x(); });
+  make("x^2 + y^2 + z^2", [&](Index j) { return scaled(j).squaredNorm(); });
+  make("cos 7x + sin(5y) z", [&](Index j) {
+    const Vec3 s = scaled(j);
+    return std::cos(7 * s.x()) + std::sin(5 * s.y()) * s.z();
+  });
+  // Sign per facet from a fixed 64-bit mix of the facet index (splitmix64's finalizer).
+  const auto mix = [](std::uint64_t z) {
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+  };
+  make("+-1 by facet", [&](Index j) {
+    const auto f = static_cast<std::uint64_t>(elements[static_cast<std::size_t>(j)].facet);
+    return (mix(f + 0x9e3779b97f4a7c15ULL) >> 63) ? 1.0 : -1.0;
+  });
+  make("random +-1", [&](Index j) {
+    return (mix(static_cast<std::uint64_t>(j) * 0x9e3779b97f4a7c15ULL + 1) >> 63) ? 1.0 : -1.0;
+  });
+  return out;
+}
+
+// Exact entries of a row are cheap (one closed-form form factor per element, O(n)): compare the
+// fast rows with them for every test vector (FastSelfCheck in the header).
+FastSelfCheck FastOperator::self_check(int samples) const {
+  FastSelfCheck check;
+  if (n_ == 0) return check;
+  Stopwatch clock;
+  const geometry::ClusterTree& tree = *tree_;
+  const auto elements = tree.elements();
+  const int L = tree.finest_level();
+  // The rows: every row, or half evenly spaced and half at corners of the input triangles.
+  std::vector<Index> rows;
+  if (samples >= n_) {
+    rows.resize(static_cast<std::size_t>(n_));
+    for (Index i = 0; i < n_; ++i) rows[static_cast<std::size_t>(i)] = i;
+  } else {
+    samples = std::max(samples, 1);
+    const Index even = std::max(1, samples - samples / 2);
+    for (Index k = 0; k < even; ++k)
+      rows.push_back(static_cast<Index>((static_cast<std::int64_t>(k) * n_) / even + (n_ / even) / 2));
+    std::vector<Index> corners;  // elements sharing a vertex with their input triangle (level-0 ancestor)
+    for (Index e = 0; e < n_; ++e) {
+      const Cluster& root = tree.cluster(0, e >> (2 * L));
+      const Cluster& c = elements[static_cast<std::size_t>(e)];
+      bool corner = false;
+      for (const Vec3& p : c.vertex)
+        for (const Vec3& q : root.vertex) corner = corner || p == q;
+      if (corner) corners.push_back(e);
+    }
+    const Index at_corners = std::min<Index>(samples - even, static_cast<Index>(corners.size()));
+    for (Index k = 0; k < at_corners; ++k)
+      rows.push_back(corners[static_cast<std::size_t>((static_cast<std::int64_t>(k) * static_cast<std::int64_t>(corners.size())) / at_corners)]);
+    std::sort(rows.begin(), rows.end());
+    rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+  }
+  const auto vectors = self_check_vectors();
+  const std::size_t V = vectors.size(), S = rows.size();
+  std::vector<std::vector<double>> moments(V);
+  for (std::size_t k = 0; k < V; ++k) compute_moments(vectors[k].second, moments[k]);
+  // v_k(j) and |v_k(j)| interleaved per element: the exact rows' inner loop reads them in order.
+  std::vector<double> values(static_cast<std::size_t>(n_) * 2 * V);
+  for (Index j = 0; j < n_; ++j)
+    for (std::size_t k = 0; k < V; ++k) {
+      values[(static_cast<std::size_t>(j) * V + k) * 2] = vectors[k].second[j];
+      values[(static_cast<std::size_t>(j) * V + k) * 2 + 1] = std::abs(vectors[k].second[j]);
+    }
+  // Per sampled row and vector: (K v)_k exact, (K |v|)_k exact (the scale), (K_fast v)_k.
+  std::vector<double> exact(S * V, 0.0), scale(S * V, 0.0), fast(S * V, 0.0);
+#pragma omp parallel
+  {
+    std::vector<double> scratch(static_cast<std::size_t>(terms_));
+#pragma omp for schedule(dynamic, 1)
+    for (std::size_t r = 0; r < S; ++r) {
+      const Index i = rows[r];
+      const double rho = rho_[static_cast<std::size_t>(i)];
+      double* ex = &exact[r * V];
+      double* sc = &scale[r * V];
+      if (rho != 0) {
+        const Vec3& P = point_[static_cast<std::size_t>(i)];
+        const Vec3& nP = normal_[static_cast<std::size_t>(i)];
+        const Index fi = elements[static_cast<std::size_t>(i)].facet;
+        for (Index j = 0; j < n_; ++j) {
+          const Cluster& e = elements[static_cast<std::size_t>(j)];
+          if (e.facet == fi) continue;  // coplanar: G = 0
+          const double kij = rho * quadrature::form_factor(P, nP, e.vertex[0], e.vertex[1], e.vertex[2], e.normal);
+          const double* vj = &values[static_cast<std::size_t>(j) * 2 * V];
+          for (std::size_t k = 0; k < V; ++k) {
+            ex[k] += kij * vj[2 * k];
+            sc[k] += kij * vj[2 * k + 1];
+          }
+        }
+      }
+      for (std::size_t k = 0; k < V; ++k) fast[r * V + k] = apply_row(i, vectors[k].second, moments[k], scratch.data());
+    }
+  }
+  check.rows = static_cast<int>(S);
+  check.sampled_rows = rows;
+  for (std::size_t k = 0; k < V; ++k) {
+    SelfCheckVector c;
+    c.name = vectors[k].first;
+    double err = 0, ref = 0;
+    for (std::size_t r = 0; r < S; ++r) {
+      // NaN-aware: a non-finite product is an infinite error, never ignored by max().
+      double d = std::abs(fast[r * V + k] - exact[r * V + k]);
+      if (!std::isfinite(d)) d = std::numeric_limits<double>::infinity();
+      if (c.row < 0 || d > err) {
+        err = d;
+        c.row = rows[r];
+      }
+      ref = std::max(ref, scale[r * V + k]);
+    }
+    c.relative_error = ref > 0 ? err / ref : err;
+    check.relative_error = std::max(check.relative_error, c.relative_error);
+    check.vectors.push_back(std::move(c));
+  }
+  check.seconds = clock.seconds();
+  return check;
+}
+
+std::vector<Index> FastOperator::far_clusters(Index i) const {
+  return {far_cluster_.begin() + far_start_[static_cast<std::size_t>(i)], far_cluster_.begin() + far_start_[static_cast<std::size_t>(i) + 1]};
+}
+
+std::vector<Index> FastOperator::near_elements(Index i) const {
+  return {near_col_.begin() + near_start_[static_cast<std::size_t>(i)], near_col_.begin() + near_start_[static_cast<std::size_t>(i) + 1]};
+}
+
+}  // namespace panelrad

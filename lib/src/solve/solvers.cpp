@@ -1,0 +1,247 @@
+#include <panelrad/support/resources.hpp>
+#include <panelrad/solve/solvers.hpp>
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace panelrad {
+
+namespace {
+double inf_norm(const Eigen::VectorXd& v) { return v.size() ? v.lpNorm<Eigen::Infinity>() : 0.0; }
+
+double relative_residual(const RadiosityOperator& K, const Eigen::VectorXd& E, const Eigen::VectorXd& u) {
+  Eigen::VectorXd Ku;
+  K.apply(u, Ku);
+  const double e = inf_norm(E);
+  const double r = inf_norm(E - u + Ku);
+  return e > 0 ? r / e : r;
+}
+
+void check_sizes(const RadiosityOperator& K, const Eigen::VectorXd& E) {
+  if (E.size() != K.size()) throw std::invalid_argument("solver: right-hand side size differs from n");
+  if (!E.allFinite()) throw std::invalid_argument("solver: right-hand side has NaN or Inf entries");
+}
+}  // namespace
+
+SolverKind parse_solver(const std::string& name) {
+  if (name == "auto") return SolverKind::automatic;
+  if (name == "neumann") return SolverKind::neumann;
+  if (name == "gmres") return SolverKind::gmres;
+  if (name == "lu") return SolverKind::lu;
+  throw std::invalid_argument("solver '" + name + "' is not auto, neumann, gmres or lu");
+}
+
+const char* to_string(SolverKind kind) {
+  switch (kind) {
+    case SolverKind::automatic: return "auto";
+    case SolverKind::neumann: return "neumann";
+    case SolverKind::gmres: return "gmres";
+    case SolverKind::lu: return "lu";
+  }
+  return "?";
+}
+
+SolveResult solve_neumann(const RadiosityOperator& K, const Eigen::VectorXd& E, const SolverOptions& options) {
+  check_sizes(K, E);
+  Stopwatch clock;
+  SolveResult r;
+  r.solver = "neumann";
+  Eigen::VectorXd u = E, Ku;  // u^(1) = E + K 0
+  Eigen::VectorXd previous_step = E;
+  double previous_norm = inf_norm(E);
+  r.iterations = 0;
+  if (previous_norm == 0) {
+    r.u = u;
+    r.seconds = clock.seconds();
+    return r;
+  }
+  double ratio = 0;
+  for (int k = 1; k <= options.max_iterations; ++k) {
+    K.apply(u, Ku);
+    ++r.iterations;
+    Eigen::VectorXd next = E + Ku;
+    const Eigen::VectorXd step = next - u;  // u^(k+1) - u^(k) = K (u^(k) - u^(k-1)), (35)
+    const double step_norm = inf_norm(step);
+    u = std::move(next);
+    const double q = previous_norm > 0 ? step_norm / previous_norm : 0;  // estimate of (36)
+    r.ratio_history.push_back(q);
+    ratio = q;
+    if (options.progress) options.progress(r.iterations, q < 1 ? q / (1 - q) * step_norm : 0.0);
+    previous_norm = step_norm;
+    if (!u.allFinite()) throw SolverError("Neumann iteration produced NaN/Inf at step " + std::to_string(k));
+    // Error bound from (35) with contraction q < 1: ||u_n - u^(k+1)|| <= q/(1-q) ||step||.
+    if (k >= 3 && q < 1) {
+      const double q_safe = std::max(q, r.ratio_history[r.ratio_history.size() - 2]);
+      if (q_safe < 1) {
+        r.error_estimate = q_safe / (1 - q_safe) * step_norm;
+        if (r.error_estimate <= options.tolerance * inf_norm(u)) {
+          r.convergence_ratio = ratio;
+          r.u = std::move(u);
+          r.residual = relative_residual(K, E, r.u);
+          r.seconds = clock.seconds();
+          return r;
+        }
+      }
+    }
+    if (step_norm == 0) {  // exact fixed point reached
+      r.convergence_ratio = ratio;
+      r.error_estimate = 0;
+      r.u = std::move(u);
+      r.residual = relative_residual(K, E, r.u);
+      r.seconds = clock.seconds();
+      return r;
+    }
+  }
+  std::ostringstream os;
+  os << "Neumann iteration did not reach the tolerance " << options.tolerance << " in "
+     << options.max_iterations << " steps (last ratio " << ratio
+     << "; a ratio near 1 means rho close to 1: use --solver gmres)";
+  throw SolverError(os.str());
+}
+
+SolveResult solve_gmres(const RadiosityOperator& K, const Eigen::VectorXd& E, const SolverOptions& options,
+                        double max_reflectivity) {
+  check_sizes(K, E);
+  Stopwatch clock;
+  SolveResult r;
+  r.solver = "gmres";
+  const Eigen::Index n = E.size();
+  const int m = std::max(1, std::min<int>(options.gmres_restart, static_cast<int>(n)));
+  // ||u - u_k||_inf <= ||(I-K)^-1||_inf ||res||_inf <= ||res||_inf / (1 - max rho)   (11)
+  const double amplification = (max_reflectivity >= 0 && max_reflectivity < 1) ? 1.0 / (1.0 - max_reflectivity) : 1e3;
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(n), Kv;
+  const double e_norm2 = E.norm();
+  if (e_norm2 == 0) {
+    r.u = u;
+    return r;
+  }
+  Eigen::MatrixXd V(n, m + 1);
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(m + 1, m);
+  Eigen::VectorXd cs(m), sn(m), g(m + 1);
+  while (r.iterations < options.max_iterations) {
+    K.apply(u, Kv);
+    ++r.iterations;
+    Eigen::VectorXd res = E - u + Kv;
+    double beta = res.norm();
+    const double res_inf = inf_norm(res);
+    r.error_estimate = amplification * res_inf;
+    if (options.progress) options.progress(r.iterations, r.error_estimate);
+    if (r.error_estimate <= options.tolerance * std::max(inf_norm(u), 1e-300)) break;
+    V.col(0) = res / beta;
+    g.setZero();
+    g[0] = beta;
+    H.setZero();
+    int j = 0;
+    for (; j < m && r.iterations < options.max_iterations; ++j) {
+      K.apply(V.col(j), Kv);
+      ++r.iterations;
+      Eigen::VectorXd w = V.col(j) - Kv;  // (I - K) v_j
+      for (int i = 0; i <= j; ++i) {      // modified Gram-Schmidt
+        H(i, j) = w.dot(V.col(i));
+        w -= H(i, j) * V.col(i);
+      }
+      H(j + 1, j) = w.norm();
+      if (H(j + 1, j) > 0) V.col(j + 1) = w / H(j + 1, j);
+      for (int i = 0; i < j; ++i) {  // apply previous Givens rotations
+        const double t = cs[i] * H(i, j) + sn[i] * H(i + 1, j);
+        H(i + 1, j) = -sn[i] * H(i, j) + cs[i] * H(i + 1, j);
+        H(i, j) = t;
+      }
+      const double d = std::hypot(H(j, j), H(j + 1, j));
+      cs[j] = d > 0 ? H(j, j) / d : 1;
+      sn[j] = d > 0 ? H(j + 1, j) / d : 0;
+      H(j, j) = d;
+      H(j + 1, j) = 0;
+      g[j + 1] = -sn[j] * g[j];
+      g[j] = cs[j] * g[j];
+      if (options.progress) options.progress(r.iterations, amplification * std::abs(g[j + 1]));
+      // |g[j+1]| is the 2-norm residual; ||.||_inf <= ||.||_2
+      if (amplification * std::abs(g[j + 1]) <= 0.5 * options.tolerance * std::max(inf_norm(u), inf_norm(E))) {
+        ++j;
+        break;
+      }
+      if (H(j, j) == 0) break;
+    }
+    // Solve the j x j upper-triangular system and update u.
+    const Eigen::VectorXd y = H.topLeftCorner(j, j).triangularView<Eigen::Upper>().solve(g.head(j));
+    u += V.leftCols(j) * y;
+    if (!u.allFinite()) throw SolverError("GMRES produced NaN/Inf");
+  }
+  K.apply(u, Kv);
+  ++r.iterations;
+  const Eigen::VectorXd res = E - u + Kv;
+  r.error_estimate = amplification * inf_norm(res);
+  r.residual = inf_norm(res) / inf_norm(E);
+  if (r.error_estimate > options.tolerance * inf_norm(u)) {
+    std::ostringstream os;
+    os << "GMRES did not reach the tolerance " << options.tolerance << " in " << options.max_iterations
+       << " products (error bound " << r.error_estimate << ")";
+    throw SolverError(os.str());
+  }
+  r.u = std::move(u);
+  r.seconds = clock.seconds();
+  return r;
+}
+
+SolveResult solve_lu(const DenseOperator& K, const Eigen::VectorXd& E) {
+  check_sizes(K, E);
+  Stopwatch clock;
+  SolveResult r;
+  r.solver = "lu";
+  const Eigen::Index n = K.size();
+  const std::size_t need = DenseOperator::matrix_bytes(static_cast<geometry::Index>(n));
+  if (need > available_memory_bytes() / 10 * 9)
+    throw std::runtime_error("LU of I - K_n needs another " + format_bytes(static_cast<double>(need)) +
+                             ", more than the memory available; use --solver neumann or gmres");
+  Eigen::MatrixXd A = -K.matrix();
+  A.diagonal().array() += 1.0;
+  Eigen::PartialPivLU<Eigen::Ref<Eigen::MatrixXd>> lu(A);  // in place
+  r.u = lu.solve(E);
+  if (!r.u.allFinite()) throw SolverError("LU produced NaN/Inf (singular system?)");
+  r.residual = relative_residual(K, E, r.u);
+  r.seconds = clock.seconds();
+  return r;
+}
+
+double discretization_tolerance(double h, double diameter) {
+  if (!(h > 0) || !(diameter > 0)) throw std::invalid_argument("discretization_tolerance: h and diameter must be positive");
+  return std::clamp(1e-5 * h / diameter, 1e-14, 1e-3);
+}
+
+SolverKind choose_solver(double max_reflectivity) {
+  return (max_reflectivity >= 0 && max_reflectivity <= 0.8) ? SolverKind::neumann : SolverKind::gmres;
+}
+
+SolveResult solve(const RadiosityOperator& K, const Eigen::VectorXd& E, const SolverOptions& options,
+                  double max_reflectivity) {
+  if (options.kind == SolverKind::automatic) {
+    SolverOptions chosen = options;
+    chosen.kind = choose_solver(max_reflectivity);
+    SolveResult r = solve(K, E, chosen, max_reflectivity);
+    std::ostringstream os;
+    if (chosen.kind == SolverKind::neumann)
+      os << "auto: Neumann, since max rho = " << max_reflectivity << " <= 0.8 bounds its ratio (36)";
+    else if (max_reflectivity >= 0)
+      os << "auto: GMRES, since max rho = " << max_reflectivity << " > 0.8 would slow Neumann (ratio up to rho)";
+    else
+      os << "auto: GMRES, since rho varies by point and its maximum is unknown";
+    r.choice = os.str();
+    return r;
+  }
+  switch (options.kind) {
+    case SolverKind::automatic: break;  // handled above
+    case SolverKind::neumann: return solve_neumann(K, E, options);
+    case SolverKind::gmres: return solve_gmres(K, E, options, max_reflectivity);
+    case SolverKind::lu: {
+      const auto* dense = dynamic_cast<const DenseOperator*>(&K);
+      if (!dense) throw std::invalid_argument("the LU solver needs the dense method (--method dense)");
+      return solve_lu(*dense, E);
+    }
+  }
+  throw std::invalid_argument("unknown solver");
+}
+
+}  // namespace panelrad

@@ -1,0 +1,221 @@
+#include <panelrad/operator/auto_parameters.hpp>
+#include <panelrad/paper/cube_example.hpp>
+#include <panelrad/operator/dense_operator.hpp>
+#include <panelrad/operator/fast_operator.hpp>
+#include <panelrad/solve/memory_plan.hpp>
+#include <panelrad/support/resources.hpp>
+#include <panelrad/io/text_output.hpp>
+
+#include <cstdio>
+#include <ostream>
+#include <sstream>
+
+namespace panelrad {
+
+std::vector<LevelMemoryEstimate> check_paper_cube_fits(const CubeRunOptions& options, bool automatic_parameters) {
+  if (options.min_level < 0 || options.max_level < options.min_level)
+    throw std::invalid_argument("levels: need 0 <= min_level <= max_level");
+  const Scene scene = make_paper_cube_scene();
+  std::vector<PlannedLevel> planned;
+  for (int level = options.min_level; level <= options.max_level; ++level)
+    planned.push_back({level, automatic_parameters ? choose_parameters(problem_size(scene.mesh(), level)) : options.op});
+  LevelMemoryOptions memory;
+  memory.collocation_vectors = 3;  // rho, E and the manufactured u (31)
+  const std::vector<LevelMemoryEstimate> levels =
+      estimate_levels_memory(scene.mesh(), planned, options.solver, scene.max_reflectivity(), memory);
+  refuse_levels_that_cannot_fit(levels, "cube ");
+  return levels;
+}
+
+namespace {
+// Where a run of the levels is, so that an allocation failure can name it.
+enum class CubeStage { tree, op, solve };
+struct CubeRunPosition {
+  int level = 0;
+  CubeStage stage = CubeStage::tree;
+};
+
+std::vector<CubeRow> solve_levels(const CubeRunOptions& options, const std::function<void(const CubeRow&)>& on_row,
+                                  CubeRunPosition& at);
+}  // namespace
+
+std::vector<CubeRow> run_paper_cube(const CubeRunOptions& options, const std::function<void(const CubeRow&)>& on_row) {
+  // Every level is estimated before level min_level is computed: a size that cannot fit is
+  // refused at once, not after the levels below it.
+  const std::vector<LevelMemoryEstimate> estimates = check_paper_cube_fits(options);
+  CubeRunPosition at;
+  try {
+    return solve_levels(options, on_row, at);
+  } catch (const std::bad_alloc&) {
+    const LevelMemoryEstimate& e = estimates[static_cast<std::size_t>(at.level - options.min_level)];
+    const std::string where = "cube level " + std::to_string(at.level) + ": ";
+    switch (at.stage) {
+      case CubeStage::tree:
+        throw ResourceError(where + out_of_memory_message("building the cluster tree (40) and the collocation points (22)",
+                                                          static_cast<double>(e.n), e.tree + e.collocation));
+      case CubeStage::op:
+        throw ResourceError(where + out_of_memory_message("building the operator (" + e.method + ")",
+                                                          static_cast<double>(e.n), e.op));
+      case CubeStage::solve:
+        break;
+    }
+    throw ResourceError(where + out_of_memory_message("solving (32)", static_cast<double>(e.n), e.solver));
+  }
+}
+
+namespace {
+std::vector<CubeRow> solve_levels(const CubeRunOptions& options, const std::function<void(const CubeRow&)>& on_row,
+                                  CubeRunPosition& at) {
+  const Scene scene = make_paper_cube_scene();
+  std::vector<CubeRow> rows;
+  for (int level = options.min_level; level <= options.max_level; ++level) {
+    at = {level, CubeStage::tree};
+    CubeRow row;
+    row.method = options.op.method;
+    row.near = to_string(options.op.near.rule);
+    row.mu = options.op.near.mu;
+    if (options.op.method == "fast") {
+      row.eta = options.op.eta;
+      row.degree = options.op.degree;
+    }
+    const Collocation collocation(scene, level);
+    row.n = collocation.size();
+    row.emissivity_s = collocation.emissivity_seconds();
+    Stopwatch clock;
+    OperatorOptions op = options.op;
+    at.stage = CubeStage::op;
+    auto K = make_operator(collocation, op);
+    double check_error = 0;
+    if (const auto* fast = dynamic_cast<const FastOperator*>(K.get())) {
+      check_error = fast->self_check().relative_error;
+      if (options.tighten_on_failed_check) {
+        const double threshold =
+            self_check_threshold(problem_size(scene.mesh(), level), scene.max_reflectivity());
+        while (check_error > threshold) {
+          const OperatorOptions stricter = tighten_parameters(op);
+          if (describe_parameters(stricter) == describe_parameters(op)) break;  // nothing stricter
+          op = stricter;
+          ++row.tightened;
+          K = make_operator(collocation, op);
+          check_error = dynamic_cast<const FastOperator&>(*K).self_check().relative_error;
+        }
+        row.eta = op.eta;
+        row.degree = op.degree;
+      }
+    }
+    row.setup_s = collocation.tree_seconds() + clock.seconds();
+    row.operator_mb = static_cast<double>(K->bytes()) / (1024.0 * 1024.0);
+    if (const auto* fast = dynamic_cast<const FastOperator*>(K.get())) {
+      const FastStatistics& s = fast->statistics();
+      row.near_pairs = s.near_pairs;
+      row.far_pairs = s.far_pairs;
+      row.skipped_coplanar = s.skipped_coplanar;
+      row.far_stored = s.far_stored;
+      row.checked_product_error = check_error;
+    }
+    SolverOptions solver = options.solver;
+    if (!(solver.tolerance > 0))
+      solver.tolerance = discretization_tolerance(collocation.tree().mesh_size(), collocation.tree().diameter());
+    at.stage = CubeStage::solve;
+    const SolveResult result = solve(*K, collocation.emissivity(), solver, scene.max_reflectivity());
+    row.solver = result.choice.empty() ? result.solver : result.choice;
+    row.solve_s = result.seconds;
+    row.iterations = result.iterations;
+    row.per_product_s = result.iterations > 0 ? result.seconds / result.iterations : 0;
+    row.conv_ratio = result.convergence_ratio;
+    row.max_error = collocation.max_error(result.u);
+    if (!rows.empty() && row.max_error > 0) row.error_ratio = rows.back().max_error / row.max_error;
+    row.peak_rss_mb = peak_rss_mb();
+    rows.push_back(row);
+    if (on_row) on_row(row);
+  }
+  return rows;
+}
+}  // namespace
+
+std::string cube_csv_header() {
+  return "method,near,eta,mu,degree,n,max_error,setup_s,solve_s,iterations,conv_ratio,peak_rss_mb";
+}
+
+std::string cube_csv_line(const CubeRow& r) {
+  const bool fast = r.method == "fast";
+  char buf[512];
+  // eta and degree only mean something for the fast method, mu only for the quadrature rule.
+  const bool quadrature = r.near == "quadrature";
+  char eta[32] = "", mu[16] = "", degree[16] = "";
+  if (fast) std::snprintf(eta, sizeof eta, "%g", r.eta);
+  if (fast) std::snprintf(degree, sizeof degree, "%d", r.degree);
+  if (quadrature) std::snprintf(mu, sizeof mu, "%d", r.mu);
+  std::snprintf(buf, sizeof buf, "%s,%s,%s,%s,%s,%d,%.6e,%.6g,%.6g,%d,%.6f,%.1f", r.method.c_str(), r.near.c_str(), eta,
+                mu, degree,
+                static_cast<int>(r.n), r.max_error, r.setup_s, r.solve_s, r.iterations, r.conv_ratio, r.peak_rss_mb);
+  return buf;
+}
+
+void write_cube_csv(const std::vector<CubeRow>& rows, const std::string& path) {
+  std::ostringstream os;
+  os << cube_csv_header() << "\n";
+  for (const auto& r : rows) os << cube_csv_line(r) << "\n";
+  write_file_atomically(path, os.str());
+}
+
+void print_cube_header(std::ostream& os, const CubeRunOptions& o) {
+  os << "Cube example (paper (31)): rho 0.5 on y=0,1; 0.4 on z=0,1; 0.3 on x=0,1; u = x^2+y^2+z^2\n"
+     << "method " << o.op.method << ", near field " << to_string(o.op.near.rule);
+  if (o.op.near.rule == NearRule::quadrature) os << " (mu " << o.op.near.mu << ", " << o.op.near.basic_rule << ")";
+  if (o.op.method == "fast") os << ", eta " << o.op.eta << ", degree M " << o.op.degree;
+  os << ", solver " << to_string(o.solver.kind) << ", threads " << max_threads() << "\n";
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "%8s %11s %6s %9s %9s %9s %6s %8s %9s %9s %9s", "n", "max error", "ratio",
+                "setup s", "E s", "solve s", "iters", "Neumann", "s/product", "op MB", "peak MB");
+  os << buf;
+  if (o.op.method == "fast") {
+    std::snprintf(buf, sizeof buf, " %12s %12s %11s %10s %s", "near pairs", "far pairs", "coplanar", "Kv error", "far field");
+    os << buf;
+  }
+  os << "\n";
+}
+
+void print_cube_row(std::ostream& os, const CubeRow& r) {
+  char buf[256];
+  char ratio[16] = "";
+  if (r.error_ratio > 0) std::snprintf(ratio, sizeof ratio, "%.2f", r.error_ratio);
+  std::snprintf(buf, sizeof buf, "%8d %11.3e %6s %9.3f %9.3f %9.3f %6d %8.4f %9.3g %9.1f %9.0f",
+                static_cast<int>(r.n), r.max_error, ratio, r.setup_s, r.emissivity_s, r.solve_s, r.iterations,
+                r.conv_ratio, r.per_product_s, r.operator_mb, r.peak_rss_mb);
+  os << buf;
+  if (r.method == "fast") {
+    std::snprintf(buf, sizeof buf, " %12zu %12zu %11zu %10.2e %s", r.near_pairs, r.far_pairs, r.skipped_coplanar,
+                  r.checked_product_error, r.far_stored ? "stored" : "recomputed");
+    os << buf;
+    if (r.tightened > 0) {
+      std::snprintf(buf, sizeof buf, " (self-check failed: tightened %d time%s to eta %g, M %d)", r.tightened,
+                    r.tightened > 1 ? "s" : "", r.eta, r.degree);
+      os << buf;
+    }
+  }
+  os << "\n";
+  os.flush();
+}
+
+}  // namespace panelrad
+
+namespace panelrad {
+
+void print_cube_growth(std::ostream& os, const std::vector<CubeRow>& rows) {
+  if (rows.size() < 2) return;
+  os << "growth per 4x in n (n log n would be ~4.3-4.6x, n^2 16x):\n";
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "%8s -> %-8s %12s %14s %12s\n", "n", "4n", "setup", "per product", "error");
+  os << buf;
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    const CubeRow& a = rows[k - 1];
+    const CubeRow& b = rows[k];
+    const auto ratio = [](double x, double y) { return x > 0 ? y / x : 0.0; };
+    std::snprintf(buf, sizeof buf, "%8d -> %-8d %11.2fx %13.2fx %11.2fx\n", static_cast<int>(a.n), static_cast<int>(b.n),
+                  ratio(a.setup_s, b.setup_s), ratio(a.per_product_s, b.per_product_s), ratio(a.max_error, b.max_error));
+    os << buf;
+  }
+}
+
+}  // namespace panelrad

@@ -1,0 +1,104 @@
+// Solvers against an independent truth: Eigen's dense solve of a small synthetic system.
+#include <panelrad/solve/solvers.hpp>
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+namespace {
+
+using panelrad::RadiosityOperator;
+
+// A matrix as an operator: y = K v.
+class MatrixOperator final : public RadiosityOperator {
+ public:
+  explicit MatrixOperator(Eigen::MatrixXd K) : K_(std::move(K)) {}
+  panelrad::Index size() const override { return static_cast<panelrad::Index>(K_.rows()); }
+  void apply(const Eigen::VectorXd& v, Eigen::VectorXd& y) const override { y = K_ * v; }
+  std::string name() const override { return "matrix"; }
+  std::size_t bytes() const override { return static_cast<std::size_t>(K_.size()) * sizeof(double); }
+  const Eigen::MatrixXd& K() const { return K_; }
+
+ private:
+  Eigen::MatrixXd K_;
+};
+
+// Nonnegative matrix with every row sum equal to r, like K_n on a closed convex surface with rho = r.
+Eigen::MatrixXd row_stochastic(int n, double r, unsigned seed) {
+  std::mt19937 gen(seed);
+  std::uniform_real_distribution<double> U(0.1, 1.0);
+  Eigen::MatrixXd K(n, n);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) K(i, j) = (i == j) ? 0.0 : U(gen);
+    K.row(i) *= r / K.row(i).sum();
+  }
+  return K;
+}
+
+TEST(Solvers, NeumannMatchesDirectSolveAndRatioIsTheRowSum) {
+  const int n = 60;
+  const double r = 0.4;
+  const MatrixOperator K(row_stochastic(n, r, 1));
+  Eigen::VectorXd E = Eigen::VectorXd::LinSpaced(n, 1.0, 2.0);
+  const Eigen::VectorXd truth = (Eigen::MatrixXd::Identity(n, n) - K.K()).partialPivLu().solve(E);
+  panelrad::SolverOptions opt;
+  opt.tolerance = 1e-12;
+  const auto res = panelrad::solve_neumann(K, E, opt);
+  EXPECT_LT((res.u - truth).lpNorm<Eigen::Infinity>(), 1e-11 * truth.lpNorm<Eigen::Infinity>());
+  // Positive matrix with constant row sums r: Perron root r with eigenvector 1, the other
+  // eigenvalues are far smaller, so the ratio of successive differences (36) tends to r.
+  EXPECT_NEAR(res.convergence_ratio, r, 1e-3);
+  EXPECT_LT(res.residual, 1e-11);
+  // Error bound of the iteration really bounds the error.
+  EXPECT_LE((res.u - truth).lpNorm<Eigen::Infinity>(), res.error_estimate * 1.0001 + 1e-300);
+}
+
+TEST(Solvers, GmresMatchesDirectSolveAndStaysBoundedAsRhoNearsOne) {
+  const int n = 80;
+  Eigen::VectorXd E = Eigen::VectorXd::LinSpaced(n, -1.0, 3.0);
+  int previous = 0;
+  for (double r : {0.5, 0.9, 0.99}) {
+    const MatrixOperator K(row_stochastic(n, r, 7));
+    const Eigen::VectorXd truth = (Eigen::MatrixXd::Identity(n, n) - K.K()).partialPivLu().solve(E);
+    panelrad::SolverOptions opt;
+    opt.tolerance = 1e-10;
+    const auto res = panelrad::solve_gmres(K, E, opt, r);
+    EXPECT_LT((res.u - truth).lpNorm<Eigen::Infinity>(), 1e-9 * truth.lpNorm<Eigen::Infinity>()) << "rho " << r;
+    EXPECT_LT(res.iterations, 60) << "rho " << r;
+    previous = res.iterations;
+  }
+  EXPECT_GT(previous, 0);
+}
+
+TEST(Solvers, NonConvergenceIsAnErrorNotAnAnswer) {
+  const int n = 30;
+  const MatrixOperator K(row_stochastic(n, 0.999, 3));
+  // Not the Perron vector 1 (for which one Krylov step is exact).
+  Eigen::VectorXd E = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
+  panelrad::SolverOptions opt;
+  opt.tolerance = 1e-12;
+  opt.max_iterations = 20;
+  EXPECT_THROW(panelrad::solve_neumann(K, E, opt), panelrad::SolverError);
+  // GMRES converges on this small system within ~n products; 3 products cannot reach 1e-12.
+  opt.max_iterations = 3;
+  EXPECT_THROW(panelrad::solve_gmres(K, E, opt, 0.999), panelrad::SolverError);
+}
+
+TEST(Solvers, BadRightHandSideIsRejected) {
+  const MatrixOperator K(row_stochastic(5, 0.3, 2));
+  Eigen::VectorXd E = Eigen::VectorXd::Ones(4);
+  EXPECT_THROW(panelrad::solve_neumann(K, E, {}), std::invalid_argument);
+  Eigen::VectorXd F = Eigen::VectorXd::Ones(5);
+  F[2] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(panelrad::solve_neumann(K, F, {}), std::invalid_argument);
+  EXPECT_THROW(panelrad::parse_solver("cholesky"), std::invalid_argument);
+}
+
+TEST(Solvers, LuNeedsTheDenseOperator) {
+  const MatrixOperator K(row_stochastic(5, 0.3, 2));
+  panelrad::SolverOptions opt;
+  opt.kind = panelrad::SolverKind::lu;
+  EXPECT_THROW(panelrad::solve(K, Eigen::VectorXd::Ones(5), opt, 0.3), std::invalid_argument);
+}
+
+}  // namespace
