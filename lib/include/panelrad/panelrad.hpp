@@ -4,8 +4,12 @@
 // panelrad's comments refer to K. Atkinson and D. Chien, "A fast matrix-vector multiplication
 // method for solving the radiosity equation", Advances in Computational Mathematics 12 (2000).
 //
-// The common path: a scene (scene/), its solution (solve/), and its files (io/, target
-// panelrad::io). Link panelrad::panelrad and panelrad::io.
+// The common path: a mesh (geometry/: read, validate exactly), a scene (scene/), its solution
+// (solve/), and its files (io/, target panelrad::io). Link panelrad::panelrad and panelrad::io.
+#include <panelrad/geometry/builtin_scenes.hpp>
+#include <panelrad/geometry/mesh_io.hpp>
+#include <panelrad/geometry/validation.hpp>
+
 #include <panelrad/support/error.hpp>
 #include <panelrad/support/resources.hpp>
 #include <panelrad/support/version.hpp>
