@@ -28,14 +28,18 @@ std::string quoted(const std::vector<std::string>& args) {
 }
 
 /// The arguments no option or positional took, in command-line order (CLI11's own message
-/// lists them in reverse): the first one as an unknown option or an unexpected argument, after
-/// the positional arguments already taken.
+/// lists them in reverse): the first one as an unknown option, or as an unexpected argument
+/// after the positional arguments already taken.
 std::string describe_extras(const CLI::App& command, const std::vector<std::string>& extras) {
   const std::string& first = extras.front();
-  std::string what = first.size() > 1 && first[0] == '-' ? "unknown option '" + first + "'"
-                                                         : "unexpected argument '" + first + "'";
-  for (const CLI::Option* p : command.get_options([](const CLI::Option* o) { return o->get_positional(); }))
-    if (p->count() > 0) what += " after " + p->get_name() + " '" + p->results().front() + "'";
+  std::string what;
+  if (first.size() > 1 && first[0] == '-') {
+    what = "unknown option '" + first + "'";
+  } else {
+    what = "unexpected argument '" + first + "'";
+    for (const CLI::Option* p : command.get_options([](const CLI::Option* o) { return o->get_positional(); }))
+      if (p->count() > 0) what += " after " + p->get_name() + " '" + p->results().front() + "'";
+  }
   if (extras.size() > 1) what += " (not taken: " + quoted(extras) + ")";
   return what;
 }

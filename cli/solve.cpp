@@ -80,7 +80,7 @@ struct SolveCommandLine {
 void add_solve_options(CLI::App& app, SolveCommandLine& line) {
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);  // repeated: the last counts
   SceneSolveOptions& o = line.o;
-  app.add_option("SCENE", line.scene_path)->required();
+  app.add_option("SCENE", line.scene_path);  // checked after parsing, so an unknown option is said first
   CLI::Option* levels = app.add_option("--levels", o.levels)->type_name("L")->transform(integer_in(0, 12));
   CLI::Option* max_elements =
       app.add_option("--max-elements", o.max_elements)->type_name("N")->transform(integer_in(1, 1 << 30));
@@ -110,6 +110,7 @@ void add_solve_options(CLI::App& app, SolveCommandLine& line) {
 
 /// The combinations of options, once the command line is parsed.
 void check_solve_options(const CLI::App& app, SolveCommandLine& line) {
+  if (app.count("SCENE") == 0) throw UsageError("no scene given");
   const bool manual = app.count("--eta") + app.count("--degree") + app.count("--near") + app.count("--mu") > 0;
   if (manual && line.o.method == "auto")
     throw UsageError("--eta, --degree, --near and --mu need --method dense or fast");

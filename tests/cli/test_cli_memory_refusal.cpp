@@ -167,7 +167,8 @@ TEST(CliOptions, BadValuesNameTheOptionAndWhy) {
       {"cube 3", "unexpected argument '3'"},
       {"solve " PANELRAD_SOURCE_DIR "/examples/scenes/cornell_box.obj second.obj",
        "unexpected argument 'second.obj' after SCENE '" PANELRAD_SOURCE_DIR "/examples/scenes/cornell_box.obj'"},
-      {"solve", "SCENE is required"},
+      {"solve", "no scene given"},
+      {"solve --bogus", "unknown option '--bogus'"},
       {"check --builtin cube --builtin octahedron", "--builtin: At Most 1 required but received 2"},
       {"frobnicate", "panelrad: unknown command 'frobnicate'"},
   };
