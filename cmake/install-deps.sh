@@ -12,6 +12,7 @@ packages=(
   clang libclang-rt-14-dev libomp-dev    # fuzz/: libFuzzer and clang's sanitizer runtimes, clang's OpenMP
   nlohmann-json3-dev                     # JSON sidecar of OFF scenes (panelrad solve)
   libpng-dev                             # PNG picture of a solved scene
+  libcli11-dev                           # command-line option parsing (cli/)
   gnuplot-nox                            # bench/plot_pareto.gp (error-time plot of bench/sweep)
 )
 missing=()
