@@ -1,6 +1,7 @@
 #include <panelrad/quadrature/singular_integration.hpp>
 #include <panelrad/quadrature/exact_integrals.hpp>
 #include <panelrad/quadrature/triangle_rules.hpp>
+#include <panelrad/geometry/subdivision.hpp>
 
 #include <algorithm>
 #include <utility>
@@ -461,19 +462,11 @@ class HierarchicalIntegrator {
   // Children of a separated piece are separated too (their ratio dist/diam is at least twice
   // the parent's) and keep at least the parent's order, so that refinement always gains.
   void refine(const Piece& e) {
-    const Vec3 ab = 0.5 * (e.a + e.b), bc = 0.5 * (e.b + e.c), ca = 0.5 * (e.c + e.a);
-    separated(e.a, ab, ca, e.order);
-    separated(ab, e.b, bc, e.order);
-    separated(ca, bc, e.c, e.order);
-    separated(ab, bc, ca, e.order);
+    for (const auto& t : geometry::midpoint_subdivision(e.a, e.b, e.c)) separated(t[0], t[1], t[2], e.order);
   }
 
   void split(const Vec3& a, const Vec3& b, const Vec3& c) {
-    const Vec3 ab = 0.5 * (a + b), bc = 0.5 * (b + c), ca = 0.5 * (c + a);
-    classify(a, ab, ca);
-    classify(ab, b, bc);
-    classify(ca, bc, c);
-    classify(ab, bc, ca);
+    for (const auto& t : geometry::midpoint_subdivision(a, b, c)) classify(t[0], t[1], t[2]);
   }
 
   void classify(const Vec3& a, const Vec3& b, const Vec3& c) {
