@@ -6,7 +6,7 @@ packages=(
   build-essential cmake pkg-config
   libcgal-dev libgmp-dev libmpfr-dev     # exact predicates and constructions (geometry/)
   libeigen3-dev                          # vectors and dense linear algebra
-  libboost-dev                           # header-only parts used by CGAL
+  libboost-dev                           # header-only: used by CGAL; Boost.Math Legendre zeros (quadrature/)
   libopenmesh-dev                        # OFF/OBJ readers
   libgtest-dev libgmock-dev              # GoogleTest
   clang libclang-rt-14-dev libomp-dev    # fuzz/: libFuzzer and clang's sanitizer runtimes, clang's OpenMP

@@ -1,8 +1,8 @@
 #include <panelrad/operator/collocation.hpp>
 #include <panelrad/support/resources.hpp>
+#include <panelrad/geometry/parallel_for.hpp>
 
 #include <cmath>
-#include <exception>
 #include <string>
 #include <stdexcept>
 
@@ -22,29 +22,20 @@ Collocation::Collocation(const Scene& scene, int level) {
   if (manufactured) true_u_.resize(n);
   // Each row is independent: parallel, and the values do not depend on the thread count.
   // On bad data, report the lowest failing row whatever the thread count (deterministic message).
-  std::exception_ptr failure;
-  Index failed_row = n;
-#pragma omp parallel for schedule(dynamic, 16)
-  for (Index i = 0; i < n; ++i) {
-    try {
-      const Vec3& P = collocation_point(i);
-      const Index f = facet(i);
-      rho_[i] = scene.reflectivity(P, f);
-      if (manufactured) {
-        true_u_[i] = scene.manufactured_solution()(P, f);
-        E_[i] = scene.manufactured_emissivity(P, f, normal(i));
-      } else {
-        E_[i] = scene.emissivity(P, f);
-      }
-    } catch (...) {
-#pragma omp critical(panelrad_collocation_failure)
-      if (i < failed_row) {
-        failed_row = i;
-        failure = std::current_exception();
-      }
-    }
-  }
-  if (failure) std::rethrow_exception(failure);
+  geometry::parallel_for(
+      n,
+      [&](Index i) {
+        const Vec3& P = collocation_point(i);
+        const Index f = facet(i);
+        rho_[i] = scene.reflectivity(P, f);
+        if (manufactured) {
+          true_u_[i] = scene.manufactured_solution()(P, f);
+          E_[i] = scene.manufactured_emissivity(P, f, normal(i));
+        } else {
+          E_[i] = scene.emissivity(P, f);
+        }
+      },
+      16);
   emissivity_s_ = clock.seconds();
 }
 
