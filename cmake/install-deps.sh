@@ -7,7 +7,7 @@ packages=(
   libcgal-dev libgmp-dev libmpfr-dev     # exact predicates and constructions (geometry/)
   libeigen3-dev                          # vectors and dense linear algebra
   libboost-dev                           # header-only: used by CGAL; Boost.Math Legendre zeros (quadrature/)
-  libopenmesh-dev                        # OFF/OBJ readers
+  libopenmesh-dev                        # the tests' second OFF/OBJ reader (geometry/oracles)
   libgtest-dev libgmock-dev              # GoogleTest
   clang libclang-rt-14-dev libomp-dev    # fuzz/: libFuzzer and clang's sanitizer runtimes, clang's OpenMP
   nlohmann-json3-dev                     # JSON sidecar of OFF scenes (panelrad solve)
