@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace panelrad {
@@ -32,6 +33,14 @@ SolverKind parse_solver(const std::string& name) {
   if (name == "gmres") return SolverKind::gmres;
   if (name == "lu") return SolverKind::lu;
   throw std::invalid_argument("solver '" + name + "' is not auto, neumann, gmres or lu");
+}
+
+const char* to_string(SolveStatus status) {
+  return status == SolveStatus::converged ? "converged" : "not converged";
+}
+
+void require_converged(const SolveResult& result) {
+  if (result.status != SolveStatus::converged) throw SolverError(result.message);
 }
 
 const char* to_string(SolverKind kind) {
@@ -72,7 +81,9 @@ SolveResult solve_neumann(const RadiosityOperator& K, const Eigen::VectorXd& E, 
     if (options.progress) options.progress(r.iterations, q < 1 ? q / (1 - q) * step_norm : 0.0);
     previous_norm = step_norm;
     if (!u.allFinite()) throw SolverError("Neumann iteration produced NaN/Inf at step " + std::to_string(k));
-    // Error bound from (35) with contraction q < 1: ||u_n - u^(k+1)|| <= q/(1-q) ||step||.
+    // Error bound from (35) with contraction q < 1: ||u_n - u^(k+1)|| <= q/(1-q) ||step||;
+    // none (+inf) while the ratio is not yet known to be below 1.
+    r.error_estimate = std::numeric_limits<double>::infinity();
     if (k >= 3 && q < 1) {
       const double q_safe = std::max(q, r.ratio_history[r.ratio_history.size() - 2]);
       if (q_safe < 1) {
@@ -98,8 +109,14 @@ SolveResult solve_neumann(const RadiosityOperator& K, const Eigen::VectorXd& E, 
   std::ostringstream os;
   os << "Neumann iteration did not reach the tolerance " << options.tolerance << " in "
      << options.max_iterations << " steps (last ratio " << ratio
-     << "; a ratio near 1 means rho close to 1: use --solver gmres)";
-  throw SolverError(os.str());
+     << "; a ratio near 1 means rho close to 1, where GMRES needs far fewer products)";
+  r.status = SolveStatus::not_converged;
+  r.message = os.str();
+  r.convergence_ratio = ratio;
+  r.u = std::move(u);
+  r.residual = relative_residual(K, E, r.u);
+  r.seconds = clock.seconds();
+  return r;
 }
 
 SolveResult solve_gmres(const RadiosityOperator& K, const Eigen::VectorXd& E, const SolverOptions& options,
@@ -179,7 +196,8 @@ SolveResult solve_gmres(const RadiosityOperator& K, const Eigen::VectorXd& E, co
     std::ostringstream os;
     os << "GMRES did not reach the tolerance " << options.tolerance << " in " << options.max_iterations
        << " products (error bound " << r.error_estimate << ")";
-    throw SolverError(os.str());
+    r.status = SolveStatus::not_converged;
+    r.message = os.str();
   }
   r.u = std::move(u);
   r.seconds = clock.seconds();
@@ -195,7 +213,7 @@ SolveResult solve_lu(const DenseOperator& K, const Eigen::VectorXd& E) {
   const std::size_t need = DenseOperator::matrix_bytes(static_cast<geometry::Index>(n));
   if (need > available_memory_bytes() / 10 * 9)
     throw std::runtime_error("LU of I - K_n needs another " + format_bytes(static_cast<double>(need)) +
-                             ", more than the memory available; use --solver neumann or gmres");
+                             ", more than the memory available; use the Neumann or GMRES iteration");
   Eigen::MatrixXd A = -K.matrix();
   A.diagonal().array() += 1.0;
   Eigen::PartialPivLU<Eigen::Ref<Eigen::MatrixXd>> lu(A);  // in place
@@ -237,7 +255,7 @@ SolveResult solve(const RadiosityOperator& K, const Eigen::VectorXd& E, const So
     case SolverKind::gmres: return solve_gmres(K, E, options, max_reflectivity);
     case SolverKind::lu: {
       const auto* dense = dynamic_cast<const DenseOperator*>(&K);
-      if (!dense) throw std::invalid_argument("the LU solver needs the dense method (--method dense)");
+      if (!dense) throw std::invalid_argument("the LU solver needs the dense operator (33)");
       return solve_lu(*dense, E);
     }
   }
