@@ -228,16 +228,19 @@ void mark_front(std::vector<Run*> runs, bool Run::*flag) {
   }
 }
 
+// The sweep times each operator's setup and solve on one shared collocation (the manufactured E
+// of a level is computed once for all runs, so it builds the operators by hand; the solve
+// pipeline itself is RadiositySolver's).
 Run run_one(const Scene& scene, const std::string& scene_name, const Collocation& col, const OperatorOptions& op,
             const SolverOptions& solver, bool rss_reset, Eigen::VectorXd& u) {
   Run r;
   r.scene = scene_name;
   r.n = col.size();
   r.level = col.level();
-  r.method = op.method;
+  r.method = to_string(op.method);
   r.near = to_string(op.near.rule);
   r.mu = op.near.rule == NearRule::quadrature ? op.near.mu : 0;
-  if (op.method == "fast") {
+  if (op.method == OperatorMethod::fast) {
     r.eta = op.eta;
     r.degree = op.degree;
   }
@@ -246,6 +249,7 @@ Run run_one(const Scene& scene, const std::string& scene_name, const Collocation
   const auto K = make_operator(col, op);
   r.setup_s = col.tree_seconds() + clock.seconds();  // refinement + tree + operator
   const SolveResult s = solve(*K, col.emissivity(), solver, scene.max_reflectivity());
+  require_converged(s);  // a sweep row is only meaningful at the tolerance
   r.solve_s = s.seconds;
   r.iterations = s.iterations;
   r.max_error = col.max_error(s.u);  // (51)
@@ -390,12 +394,12 @@ int main(int argc, char** argv) {
         std::vector<OperatorOptions> ops;
         if (col.size() <= cfg.dense_max_n) {
           OperatorOptions reference;  // dense, exact near rule: first, it is the reference
-          reference.method = "dense";
+          reference.method = OperatorMethod::dense;
           ops.push_back(reference);
           for (const auto& nc : cfg.nears) {
             if (nc.options.rule == NearRule::exact) continue;
             OperatorOptions o;
-            o.method = "dense";
+            o.method = OperatorMethod::dense;
             o.near = nc.options;
             ops.push_back(o);
           }
@@ -405,7 +409,7 @@ int main(int argc, char** argv) {
             for (double eta : cfg.etas)
               for (int m : cfg.degrees) {
                 OperatorOptions o;
-                o.method = "fast";
+                o.method = OperatorMethod::fast;
                 o.near = nc.options;
                 o.eta = eta;
                 o.degree = m;
@@ -421,7 +425,7 @@ int main(int argc, char** argv) {
         for (const OperatorOptions& op : ops) {
           const int mu = op.near.rule == NearRule::quadrature ? op.near.mu : -1;
           const std::string key = std::to_string(mu) + "/" + std::to_string(op.eta);
-          if (cfg.prune && op.method == "fast" && u_ref) {
+          if (cfg.prune && op.method == OperatorMethod::fast && u_ref) {
             if (mu >= 0 && dense_quad_faithful.count(mu) && !dense_quad_faithful[mu]) continue;
             if (faithful_seen[key] >= 2) continue;
           }
@@ -432,13 +436,13 @@ int main(int argc, char** argv) {
             const Run again = run_one(scene, scene_name, col, op, solver, rss_reset, u2);
             if (again.total() < r.total()) r = again;
           }
-          if (!u_ref && op.method == "dense" && op.near.rule == NearRule::exact) u_ref = u;
+          if (!u_ref && op.method == OperatorMethod::dense && op.near.rule == NearRule::exact) u_ref = u;
           if (u_ref) {
             r.deviation = (u - *u_ref).lpNorm<Eigen::Infinity>();
             r.reference_error = col.max_error(*u_ref);
           }
-          if (op.method == "dense" && mu >= 0) dense_quad_faithful[mu] = r.faithful();
-          if (op.method == "fast" && (r.faithful() || faithful_seen[key] > 0)) ++faithful_seen[key];
+          if (op.method == OperatorMethod::dense && mu >= 0) dense_quad_faithful[mu] = r.faithful();
+          if (op.method == OperatorMethod::fast && (r.faithful() || faithful_seen[key] > 0)) ++faithful_seen[key];
           std::printf("  %-24s %5s %3s %11.4e %10.3e %9.3f %9.3f %5d %8.0f\n", r.series().c_str(),
                       r.method == "fast" ? (std::ostringstream() << r.eta).str().c_str() : "",
                       r.method == "fast" ? std::to_string(r.degree).c_str() : "", r.max_error, r.deviation,

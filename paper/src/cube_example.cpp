@@ -32,8 +32,9 @@ namespace {
 RadiositySolverOptions level_options(const CubeRunOptions& options, int level) {
   RadiositySolverOptions o;
   o.level = level;
-  o.method = options.automatic_parameters ? OperatorMethod::automatic : options.op.method;
+  o.method = options.op.method;
   o.manual = options.op;
+  o.tighten_on_failed_check = options.tighten_on_failed_check;
   o.solver = options.solver;  // tolerance <= 0: discretization_tolerance, per level
   o.fold_reflectivity = true;  // K_n with rho (31) in its rows, as in the paper's tables
   return o;
@@ -78,7 +79,7 @@ CubeRow cube_row(const RadiositySolver& solver, const ChannelSolve& result) {
 std::vector<CubeRow> run_paper_cube(const CubeRunOptions& options, const std::function<void(const CubeRow&)>& on_row) {
   // Every level is estimated before level min_level is computed: a size that cannot fit is
   // refused at once, not after the levels below it.
-  check_paper_cube_fits(options, options.automatic_parameters);
+  check_paper_cube_fits(options);
   const Scene scene = make_paper_cube_scene();
   std::vector<CubeRow> rows;
   for (int level = options.min_level; level <= options.max_level; ++level) {

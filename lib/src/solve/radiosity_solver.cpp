@@ -147,8 +147,8 @@ void RadiositySolver::build_operator() {
     info_.self_check_threshold =
         self_check_threshold(problem_size(scene_.mesh(), info_.level), info_.conditioning_reflectivity);
     info_.self_check = fast->self_check();
-    while (options_.method == OperatorMethod::automatic &&
-           !(info_.self_check->relative_error <= info_.self_check_threshold)) {
+    const bool tighten = options_.method == OperatorMethod::automatic || options_.tighten_on_failed_check;
+    while (tighten && !(info_.self_check->relative_error <= info_.self_check_threshold)) {
       const OperatorOptions stricter = tighten_parameters(op);
       if (stricter == op) break;  // nothing stricter
       say(fmt("self-check %.2e above %.2e: tightening", info_.self_check->relative_error, info_.self_check_threshold));
@@ -159,9 +159,10 @@ void RadiositySolver::build_operator() {
       info_.self_check = dynamic_cast<const FastOperator&>(*op_).self_check();
     }
     if (!(info_.self_check->relative_error <= info_.self_check_threshold))
-      info_.warnings.push_back(fmt("the fast product's measured relative error %.2e is above the accepted %.2e "
-                                   "(nothing stricter to try); the answer may be less accurate than the discretization",
-                                   info_.self_check->relative_error, info_.self_check_threshold));
+      info_.warnings.push_back(fmt("the fast product's measured relative error %.2e is above the accepted %.2e ",
+                                   info_.self_check->relative_error, info_.self_check_threshold) +
+                               (tighten ? "(nothing stricter to try)" : "(manual parameters, not tightened)") +
+                               "; the answer may be less accurate than the discretization");
   }
   info_.operator_bytes = op_->bytes();
   info_.operator_s = clock.seconds();

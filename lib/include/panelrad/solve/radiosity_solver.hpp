@@ -19,7 +19,7 @@
 //      K_c = diag(rho_c) H in every channel c (33); or, with options.fold_reflectivity, K_n itself
 //      with the rho of channel 0 in its rows (the fast method then skips the rows with rho = 0);
 //   6. the fast method: FastOperator::self_check against self_check_threshold; automatic
-//      parameters are tightened (tighten_parameters) and the operator rebuilt until the check
+//      parameters (or manual ones with tighten_on_failed_check) are tightened (tighten_parameters) and the operator rebuilt until the check
 //      passes or nothing is stricter (a warning then);
 //   7. the iteration's tolerance: options.solver.tolerance, or (<= 0) discretization_tolerance.
 // solve(): (I - diag(rho) H) u = E by options.solver.kind (automatic: choose_solver(max rho)).
@@ -65,6 +65,9 @@ struct RadiositySolverOptions {
   OperatorMethod method = OperatorMethod::automatic;
   /// Near rule, eta and M when method is dense or fast (manual.method is replaced by `method`).
   OperatorOptions manual;
+  /// Fast method with manual parameters: tighten them after a failed self-check, as automatic
+  /// parameters always are (step 6).
+  bool tighten_on_failed_check = false;
   Visibility visibility = Visibility::unoccluded;  ///< passed to make_operator
   /// The iteration: kind (automatic: choose_solver), tolerance (<= 0: discretization_tolerance(h,
   /// diam)), max_iterations, GMRES restart; its per-product callback is used when `progress` is

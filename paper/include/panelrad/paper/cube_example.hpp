@@ -18,14 +18,14 @@ namespace panelrad {
 struct CubeRunOptions {
   int min_level = 0;
   int max_level = 3;
-  /// The operator of every level (method dense or fast), unless automatic_parameters.
+  /// The operator of every level: method dense or fast, near rule, eta, M.
   OperatorOptions op;
   /// solver.tolerance <= 0: tied to the discretization error per level (discretization_tolerance).
   SolverOptions solver;
-  /// Each level gets the solver object's automatic parameters (OperatorMethod::automatic:
-  /// choose_parameters for the level, self-checked and tightened until the check passes or
-  /// nothing is stricter); `op` is then not used.
-  bool automatic_parameters = false;
+  /// Fast method: when the operator's self-check exceeds self_check_threshold(), tighten the
+  /// parameters (tighten_parameters) and rebuild, until it passes or nothing is stricter
+  /// (RadiositySolverOptions::tighten_on_failed_check).
+  bool tighten_on_failed_check = false;
 };
 
 /// One line of the table / CSV.
