@@ -4,8 +4,8 @@
 // Loads examples/meshes/hexagonal_prism.off (a right prism over a regular hexagon, circumradius 1,
 // height 1) with Scene::load, sets rho = 0.6 on the six sides and 0.3 on the two caps, and
 // manufactures E = u - K u from the known solution u(Q) = 1 + 0.5 x - 0.25 y + 0.75 z^2. It then
-// solves on levels 1, 2, 3 (n = 20 * 4^level) with the automatic parameters (choose_parameters)
-// and prints max_k |u(P_k) - u_n(P_k)| per level and the ratio to the previous level.
+// solves on levels 1, 2, 3 (n = 20 * 4^level), one RadiositySolver per level with the automatic
+// parameters (choose_parameters at the scene's rho_max 0.6, self-checked), and prints max_k |u(P_k) - u_n(P_k)| per level and the ratio to the previous level.
 //   usage: hexagonal_prism [mesh.off [max_level]]
 //     mesh.off   default: the shipped examples/meshes/hexagonal_prism.off (PANELRAD_EXAMPLE_MESHES)
 //     max_level  finest level, >= 2 (default 3)
