@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -114,6 +115,31 @@ TEST(RadiositySolver, ChannelSolveIsTheSceneChannel) {
     EXPECT_EQ(b.E[i], 1 + P.x() * P.y());
   }
   EXPECT_THROW(solver.solve(3), std::invalid_argument);
+}
+
+// rho given as a function: its maximum (the conditioning of (11), which the automatic parameters
+// honour) is taken over the collocation points, and the answer is the one for that data given at
+// the points.
+TEST(RadiositySolver, ReflectivityAsAFunction) {
+  Scene scene(valid_cube());
+  scene.set_reflectivity([](const Vec3& P, Index) { return 0.3 + 0.4 * P.x() * P.z(); });
+  scene.set_emissivity(kData[0].E);
+  RadiositySolverOptions o;
+  o.level = 2;
+  const RadiositySolver solver(scene, o);
+  const Eigen::VectorXd& rho = solver.collocation().reflectivity();
+  double rho_max = 0;
+  for (Index i = 0; i < solver.n(); ++i) {
+    const Vec3& P = solver.collocation().collocation_point(i);
+    EXPECT_EQ(rho[i], 0.3 + 0.4 * P.x() * P.z());
+    rho_max = std::max(rho_max, rho[i]);
+  }
+  EXPECT_EQ(solver.info().conditioning_reflectivity, rho_max);
+  EXPECT_GT(rho_max, 0.6);
+  const ChannelSolve a = solver.solve(0);
+  const ChannelSolve b = solver.solve(rho, solver.collocation().emissivity());
+  ASSERT_TRUE(a.converged());
+  EXPECT_TRUE((a.u.array() == b.u.array()).all());
 }
 
 // max_iterations too small: the iterate is kept with its status and a finite error bound, never

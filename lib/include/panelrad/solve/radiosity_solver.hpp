@@ -124,6 +124,8 @@ class RadiositySolver {
   /// std::invalid_argument (bad options or data, naming them), ResourceError (a size that does not
   /// fit, before any work, or an allocation that failed, naming the stage).
   explicit RadiositySolver(const Scene& scene, const RadiositySolverOptions& options = {});
+  /// A temporary scene would not outlive the solver.
+  RadiositySolver(Scene&&, const RadiositySolverOptions& = {}) = delete;
 
   const RadiositySolverOptions& options() const { return options_; }
   const RadiositySolverInfo& info() const { return info_; }
