@@ -14,15 +14,17 @@
 #include <panelrad/support/resources.hpp>
 #include <panelrad/support/version.hpp>
 
-#include <panelrad/scene/channel_scene.hpp>
 #include <panelrad/scene/scene.hpp>
 
 #include <panelrad/operator/auto_parameters.hpp>
+#include <panelrad/operator/clustering_parameters.hpp>
 #include <panelrad/operator/collocation.hpp>
 #include <panelrad/operator/dense_operator.hpp>
 #include <panelrad/operator/fast_operator.hpp>
 #include <panelrad/operator/operator_factory.hpp>
 
+#include <panelrad/solve/memory_plan.hpp>
+#include <panelrad/solve/radiosity_solver.hpp>
 #include <panelrad/solve/scene_solver.hpp>
 #include <panelrad/solve/solvers.hpp>
 

@@ -110,7 +110,8 @@ double self_check_threshold(const ProblemSize& size, double rho_max = kPaperCube
 /// Returns `options` unchanged when nothing is stricter (eta 0.1 and M >= 6).
 OperatorOptions tighten_parameters(const OperatorOptions& options);
 
-/// "dense, exact near field" / "fast, exact near field, eta 0.3, M 4".
+/// "dense, exact near field" / "fast, exact near field, eta 0.3, M 4": for printing (compare
+/// options with ==).
 std::string describe_parameters(const OperatorOptions& options);
 
 }  // namespace panelrad

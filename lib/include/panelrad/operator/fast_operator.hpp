@@ -4,6 +4,7 @@
 // admissible clusters (41) are taken whole and integrated by the degree-M Taylor far field
 // (44)-(48); non-admissible leaves form the near field (43), integrated once at setup and stored
 // sparse. Clusters coplanar with P_i contribute exactly 0 and are skipped; rows with rho = 0 too.
+#include <panelrad/operator/clustering_parameters.hpp>
 #include <panelrad/operator/collocation.hpp>
 #include <panelrad/operator/far_field.hpp>
 #include <panelrad/support/large_buffer.hpp>
@@ -20,9 +21,8 @@
 
 namespace panelrad {
 
-struct FastOptions {
-  double eta = 0.2;   ///< admissibility parameter of (41), in (0, 1)
-  int degree = 2;     ///< Taylor degree M of (44), 0..12
+/// eta of (41) and M of (44) (ClusteringParameters), the near rule and the storage limits.
+struct FastOptions : ClusteringParameters {
   NearFieldOptions near;
   /// Far-field coefficients are stored when they take at most this many bytes (0: automatic,
   /// half of the available memory); otherwise they are recomputed in every product.
