@@ -1,5 +1,6 @@
 // panelrad cube: the paper's cube example (section 3, Table 1; section 5, Tables 2-4).
 #include "commands.hpp"
+#include "hints.hpp"
 #include "options.hpp"
 
 #include <panelrad/operator/auto_parameters.hpp>
@@ -59,7 +60,9 @@ void add_cube_options(CLI::App& app, CubeCommandLine& line) {
   app.add_option("--accuracy", line.accuracy)->type_name("auto|manual")->check(one_of({"auto", "manual"}));
   app.add_option("--levels", o.max_level)->type_name("L")->transform(integer_in(0, 12));
   app.add_option("--min-level", o.min_level)->type_name("L0")->transform(integer_in(0, 12));
-  app.add_option("--method", o.op.method)->type_name("dense|fast")->check(one_of({"dense", "fast"}));
+  app.add_option_function<std::string>("--method", [&o](const std::string& v) { o.op.method = parse_operator_method(v); })
+      ->type_name("dense|fast")
+      ->check(one_of({"dense", "fast"}));
   app.add_option_function<std::string>("--near", [&o](const std::string& v) { o.op.near.rule = parse_near_rule(v); })
       ->type_name("exact|quadrature")
       ->check(one_of({"exact", "quadrature"}));
@@ -90,7 +93,7 @@ void check_cube_options(const CLI::App& app, CubeCommandLine& line) {
   if (line.accuracy == "auto" && !line.manual_opt.empty())
     throw UsageError("--accuracy auto chooses the parameters itself; " + line.manual_opt +
                      " needs --accuracy manual");
-  if (o.solver.kind == SolverKind::lu && o.op.method != "dense") throw UsageError("--solver lu needs --method dense");
+  if (o.solver.kind == SolverKind::lu && o.op.method != OperatorMethod::dense) throw UsageError("--solver lu needs --method dense");
 }
 
 int run_cube(const CubeCommandLine& line) {
@@ -130,7 +133,7 @@ int run_cube(const CubeCommandLine& line) {
         group.tighten_on_failed_check = true;  // the self-check can only make it stricter
         group.min_level = level;
         while (level + 1 <= o.max_level &&
-               describe_parameters(choose_parameters(problem_size(cube, level + 1))) == describe_parameters(group.op))
+               choose_parameters(problem_size(cube, level + 1)) == group.op)
           ++level;
         group.max_level = level++;
         std::cout << "accuracy auto: levels " << group.min_level << ".." << group.max_level << ": "
@@ -151,6 +154,7 @@ int run_cube(const CubeCommandLine& line) {
     }
   } catch (const std::exception& e) {
     std::cerr << "panelrad cube: error: " << e.what() << "\n";
+    if (const std::string hint = hint_for(e); !hint.empty()) std::cerr << "panelrad cube: " << hint << "\n";
     return 1;
   }
   if (!rows.empty()) std::cout << "solver: " << rows.back().solver << "\n";

@@ -1,5 +1,6 @@
 // panelrad command-line program: dispatches sub-commands (CLI11 sub-commands of one App).
 #include "commands.hpp"
+#include "hints.hpp"
 #include "options.hpp"
 
 #include <panelrad/support/version.hpp>
@@ -106,6 +107,8 @@ int main(int argc, char** argv) {
       return 2;
     } catch (const std::exception& e) {
       std::cerr << "panelrad " << name << ": error: " << e.what() << "\n";
+      if (const std::string hint = panelrad::cli::hint_for(e); !hint.empty())
+        std::cerr << "panelrad " << name << ": " << hint << "\n";
       return 1;
     }
   }

@@ -71,7 +71,7 @@ std::string check_formats(const std::string& formats, std::set<std::string>* wan
 /// What the command line says, in the library's option structs.
 struct SolveCommandLine {
   std::string scene_path, prefix, materials, formats = "csv,ply,vtk,png";
-  SceneSolveOptions o;
+  RadiositySolverOptions o;
   bool quiet = false;
   int threads = 0;
   std::set<std::string> wanted;  // from formats
@@ -79,9 +79,9 @@ struct SolveCommandLine {
 
 void add_solve_options(CLI::App& app, SolveCommandLine& line) {
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);  // repeated: the last counts
-  SceneSolveOptions& o = line.o;
+  RadiositySolverOptions& o = line.o;
   app.add_option("SCENE", line.scene_path);  // checked after parsing, so an unknown option is said first
-  CLI::Option* levels = app.add_option("--levels", o.levels)->type_name("L")->transform(integer_in(0, 12));
+  CLI::Option* levels = app.add_option("--levels", o.level)->type_name("L")->transform(integer_in(0, 12));
   CLI::Option* max_elements =
       app.add_option("--max-elements", o.max_elements)->type_name("N")->transform(integer_in(1, 1 << 30));
   levels->excludes(max_elements);
@@ -92,7 +92,9 @@ void add_solve_options(CLI::App& app, SolveCommandLine& line) {
   app.add_option("--formats", line.formats)->type_name("csv,ply,vtk,png")->check([](const std::string& formats) {
     return check_formats(formats, nullptr);
   });
-  app.add_option("--method", o.method)->type_name("auto|dense|fast")->check(one_of({"auto", "dense", "fast"}));
+  app.add_option_function<std::string>("--method", [&o](const std::string& v) { o.method = parse_operator_method(v); })
+      ->type_name("auto|dense|fast")
+      ->check(one_of({"auto", "dense", "fast"}));
   app.add_option("--eta", o.manual.eta)->type_name("E")->transform(number_in(1e-3, 0.99));
   app.add_option("--degree", o.manual.degree)->type_name("M")->transform(integer_in(0, 12));
   app.add_option_function<std::string>("--near",
@@ -100,10 +102,10 @@ void add_solve_options(CLI::App& app, SolveCommandLine& line) {
       ->type_name("exact|quadrature")
       ->check(one_of({"exact", "quadrature"}));
   app.add_option("--mu", o.manual.near.mu)->type_name("K")->transform(integer_in(0, 6));
-  app.add_option_function<std::string>("--solver", [&o](const std::string& v) { o.solver = parse_solver(v); })
+  app.add_option_function<std::string>("--solver", [&o](const std::string& v) { o.solver.kind = parse_solver(v); })
       ->type_name("auto|neumann|gmres")
       ->check(one_of({"auto", "neumann", "gmres"}));
-  app.add_option("--tol", o.tolerance)->type_name("T|auto")->transform(tolerance_in(1e-15, 0.5));
+  app.add_option("--tol", o.solver.tolerance)->type_name("T|auto")->transform(tolerance_in(1e-15, 0.5));
   app.add_option("--threads", line.threads)->type_name("T")->transform(thread_count());
   app.add_flag("--quiet", line.quiet);
 }
@@ -112,7 +114,7 @@ void add_solve_options(CLI::App& app, SolveCommandLine& line) {
 void check_solve_options(const CLI::App& app, SolveCommandLine& line) {
   if (app.count("SCENE") == 0) throw UsageError("no scene given");
   const bool manual = app.count("--eta") + app.count("--degree") + app.count("--near") + app.count("--mu") > 0;
-  if (manual && line.o.method == "auto")
+  if (manual && line.o.method == OperatorMethod::automatic)
     throw UsageError("--eta, --degree, --near and --mu need --method dense or fast");
   (void)check_formats(line.formats, &line.wanted);  // checked by the option's validator
   if (line.prefix.empty()) line.prefix = default_prefix(line.scene_path);
@@ -125,7 +127,7 @@ int run_solve(const CLI::App& app, const SolveCommandLine& command_line) {
   const std::string& materials = command_line.materials;
   const std::set<std::string>& wanted = command_line.wanted;
   const bool quiet = command_line.quiet, max_given = app.count("--max-elements") > 0;
-  SceneSolveOptions o = command_line.o;
+  RadiositySolverOptions o = command_line.o;
   const int threads = command_line.threads;
   std::vector<std::string> outputs;  // PREFIX.<format>, in writing order
   for (const char* f : {"csv", "ply", "vtk", "png"})
@@ -135,26 +137,27 @@ int run_solve(const CLI::App& app, const SolveCommandLine& command_line) {
   set_threads(threads);
   if (!quiet) o.progress = [](const std::string& line) { std::cerr << "panelrad solve: " << line << "\n"; };
 
-  const ChannelScene scene = load_channel_scene(scene_path, materials);  // errors: exit 1 (main)
+  const Scene scene = load_channel_scene(scene_path, materials);  // errors: exit 1 (main)
   if (!quiet)
-    for (const std::string& note : scene.notes) std::cerr << "panelrad solve: note: " << note << "\n";
+    for (const std::string& note : scene.notes()) std::cerr << "panelrad solve: note: " << note << "\n";
   // --max-elements N below n0: no level has n <= N, so level 0 (n = n0) is solved; said even
   // with --quiet, since the run then does not do what was asked.
-  if (o.levels < 0 && static_cast<long long>(scene.mesh.triangles.size()) > o.max_elements)
+  if (o.level < 0 && static_cast<long long>(scene.mesh().triangles.size()) > o.max_elements)
     std::cerr << "panelrad solve: note: " << (max_given ? "--max-elements " : "the default --max-elements ")
-              << o.max_elements << " is below the scene's " << scene.mesh.triangles.size()
-              << " triangles (n0): solving level 0, n = " << scene.mesh.triangles.size() << "\n";
+              << o.max_elements << " is below the scene's " << scene.mesh().triangles.size()
+              << " triangles (n0): solving level 0, n = " << scene.mesh().triangles.size() << "\n";
   // Everything about the outputs that can be checked is checked before a long run, not after it:
   // the channel names as CSV columns, and that each output's directory takes a new file (a
   // uniquely named temporary, removed again) and the output is not a directory.
   try {
-    check_channel_names(scene.channels);
+    check_channel_names(scene.channels());
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(scene_path + ": " + e.what());
   }
   for (const std::string& path : outputs) check_output_path(path);
 
-  const SceneSolution s = solve_channel_scene(scene, o);
+  const SceneSolution s = solve_scene(scene, o);
+  require_converged(s);  // a channel out of iterations: exit 1 with the SolverError's message, no outputs
   // All outputs are written to temporaries first and replace the previous ones only when every
   // one was written: a failure (or SIGINT/SIGTERM) leaves the previous set untouched.
   OutputSet set;
@@ -173,7 +176,7 @@ int run_solve(const CLI::App& app, const SolveCommandLine& command_line) {
   const std::vector<std::string>& written = outputs;
 
   // Summary.
-  std::printf("scene %s: %d facets, %zu channel%s\n", scene_path.c_str(), static_cast<int>(scene.mesh.num_facets),
+  std::printf("scene %s: %d facets, %zu channel%s\n", scene_path.c_str(), static_cast<int>(scene.mesh().num_facets),
               scene.num_channels(), scene.num_channels() > 1 ? "s" : "");
   std::printf("n = %d (level %d), h/diam = %.3e, %s\n", static_cast<int>(s.n), s.level, s.mesh_size / s.diameter,
               s.method.c_str());
