@@ -10,6 +10,8 @@
 // 262k clusters of the cube's level 7); the Mpzf evaluation is more than ten times cheaper.
 #include <panelrad/geometry/cluster_tree.hpp>
 
+#include <panelrad/geometry/bounding_box.hpp>
+
 #include <CGAL/Gmpq.h>
 #include <CGAL/Mpzf.h>
 
@@ -21,6 +23,7 @@
 #include <cstdint>
 #include <exception>
 #include <limits>
+#include <ranges>
 #include <sstream>
 #include <string>
 
@@ -368,13 +371,7 @@ ClusterTree::ClusterTree(const TriangleMesh& mesh, int finest_level, std::size_t
     h = std::max({h, length(v[1] - v[0]), length(v[2] - v[1]), length(v[0] - v[2])});
   }
   mesh_size_ = h;
-  Vec3 lo = roots[0].vertex[0], hi = lo;
-  for (const Cluster& c : roots)
-    for (const Vec3& v : c.vertex) {
-      lo = lo.cwiseMin(v);
-      hi = hi.cwiseMax(v);
-    }
-  diameter_ = length(hi - lo);
+  diameter_ = bounding_box_diameter(roots | std::views::transform(&Cluster::vertex) | std::views::join);
 }
 
 }  // namespace panelrad::geometry
