@@ -88,40 +88,56 @@ double worst_within_faces(const TriangleMesh& mesh, const std::vector<Index>& ba
   return worst;
 }
 
-/// Replace the triangulation of every polygonal input face by the exact hull's when the
-/// hull has exactly the input's vertices and each hull triangle lies on the vertices of one input
-/// face. Returns the number of faces whose triangulation changed, or a reason why not.
-std::variant<Sz, std::string> retriangulate_from_hull(TriangleMesh& mesh, const Hull& hull, const Geometry& g) {
-  const Describe d{mesh};
-  if (hull.num_vertices != mesh.vertices.size()) {
-    for (Sz v = 0; v < mesh.vertices.size(); ++v)
-      if (!hull.is_vertex[v])
-        return d.vertex(static_cast<Index>(v)) + " is not a vertex of the exact convex hull";
+/// The vertices of each input face (sorted, distinct), and the input faces of each vertex.
+struct FaceVertices {
+  std::vector<std::vector<Index>> of_face;
+  std::vector<std::vector<Index>> faces_of_vertex;
+};
+
+FaceVertices vertices_of_faces(const TriangleMesh& mesh) {
+  FaceVertices fv;
+  fv.of_face.resize(at(mesh.num_facets));
+  for (Sz t = 0; t < mesh.triangles.size(); ++t)
+    for (Index v : mesh.triangles[t]) fv.of_face[at(mesh.facet_of_triangle[t])].push_back(v);
+  fv.faces_of_vertex.resize(mesh.vertices.size());
+  for (Sz f = 0; f < fv.of_face.size(); ++f) {
+    auto& vs = fv.of_face[f];
+    std::sort(vs.begin(), vs.end());
+    vs.erase(std::unique(vs.begin(), vs.end()), vs.end());
+    for (Index v : vs) fv.faces_of_vertex[at(v)].push_back(static_cast<Index>(f));
   }
-  const Sz nf = at(mesh.num_facets);
-  std::vector<std::vector<Index>> facet_vertices(nf);
-  std::vector<std::vector<Tri>> old_tris(nf);
+  return fv;
+}
+
+/// Per input face, its triangles as sorted vertex triples, in sorted order: equal for two
+/// triangulations of a face exactly when they are the same triangulation.
+std::vector<std::vector<Tri>> triangles_of_faces(const TriangleMesh& mesh) {
+  std::vector<std::vector<Tri>> tris(at(mesh.num_facets));
   for (Sz t = 0; t < mesh.triangles.size(); ++t) {
-    const Sz f = at(mesh.facet_of_triangle[t]);
     Tri s = mesh.triangles[t];
-    for (Index v : s) facet_vertices[f].push_back(v);
     std::sort(s.begin(), s.end());
-    old_tris[f].push_back(s);
+    tris[at(mesh.facet_of_triangle[t])].push_back(s);
   }
-  std::vector<std::vector<Index>> facets_of_vertex(mesh.vertices.size());
-  for (Sz f = 0; f < nf; ++f) {
-    auto& fv = facet_vertices[f];
-    std::sort(fv.begin(), fv.end());
-    fv.erase(std::unique(fv.begin(), fv.end()), fv.end());
-    for (Index v : fv) facets_of_vertex[at(v)].push_back(static_cast<Index>(f));
-  }
+  for (auto& f : tris) std::sort(f.begin(), f.end());
+  return tris;
+}
+
+/// Each hull triangle with the input face whose vertices it lies on, oriented outward and ordered
+/// by face (stable: in hull order within a face); or why there is no such assignment: a hull
+/// triangle joins vertices of different faces, or a face with k vertices does not get k - 2.
+std::variant<std::vector<std::pair<Index, Tri>>, std::string> hull_triangles_by_face(const TriangleMesh& mesh,
+                                                                                     const Hull& hull,
+                                                                                     const Geometry& g,
+                                                                                     const FaceVertices& fv) {
+  const Describe d{mesh};
+  const Sz nf = fv.of_face.size();
   std::vector<std::pair<Index, Tri>> out;
   std::vector<Index> count(nf, 0);
   for (Tri h : hull.triangles) {
     Index facet = kNone;
-    for (Index f : facets_of_vertex[at(h[0])]) {
-      const auto& fv = facet_vertices[at(f)];
-      if (std::binary_search(fv.begin(), fv.end(), h[1]) && std::binary_search(fv.begin(), fv.end(), h[2])) {
+    for (Index f : fv.faces_of_vertex[at(h[0])]) {
+      const auto& vs = fv.of_face[at(f)];
+      if (std::binary_search(vs.begin(), vs.end(), h[1]) && std::binary_search(vs.begin(), vs.end(), h[2])) {
         facet = f;
         break;
       }
@@ -134,26 +150,36 @@ std::variant<Sz, std::string> retriangulate_from_hull(TriangleMesh& mesh, const 
     out.emplace_back(facet, h);
   }
   for (Sz f = 0; f < nf; ++f)
-    if (facet_vertices[f].size() < 3 || at(count[f]) != facet_vertices[f].size() - 2)
-      return "input face " + std::to_string(f) + " with " + std::to_string(facet_vertices[f].size()) +
+    if (fv.of_face[f].size() < 3 || at(count[f]) != fv.of_face[f].size() - 2)
+      return "input face " + std::to_string(f) + " with " + std::to_string(fv.of_face[f].size()) +
              " vertices gets " + std::to_string(count[f]) + " hull triangles";
   std::stable_sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-  std::vector<std::vector<Tri>> new_tris(nf);
+  return out;
+}
+
+/// Replace the triangulation of every polygonal input face by the exact hull's when the
+/// hull has exactly the input's vertices and each hull triangle lies on the vertices of one input
+/// face. Returns the number of faces whose triangulation changed, or a reason why not.
+std::variant<Sz, std::string> retriangulate_from_hull(TriangleMesh& mesh, const Hull& hull, const Geometry& g) {
+  const Describe d{mesh};
+  if (hull.num_vertices != mesh.vertices.size()) {
+    for (Sz v = 0; v < mesh.vertices.size(); ++v)
+      if (!hull.is_vertex[v])
+        return d.vertex(static_cast<Index>(v)) + " is not a vertex of the exact convex hull";
+  }
+  auto by_face = hull_triangles_by_face(mesh, hull, g, vertices_of_faces(mesh));
+  if (const auto* why = std::get_if<std::string>(&by_face)) return *why;
+  const std::vector<std::vector<Tri>> old_tris = triangles_of_faces(mesh);
   mesh.triangles.clear();
   mesh.facet_of_triangle.clear();
-  for (const auto& [f, h] : out) {
+  for (const auto& [f, h] : std::get<std::vector<std::pair<Index, Tri>>>(by_face)) {
     mesh.triangles.push_back(h);
     mesh.facet_of_triangle.push_back(f);
-    Tri s = h;
-    std::sort(s.begin(), s.end());
-    new_tris[at(f)].push_back(s);
   }
+  const std::vector<std::vector<Tri>> new_tris = triangles_of_faces(mesh);
   Sz changed = 0;
-  for (Sz f = 0; f < nf; ++f) {
-    std::sort(old_tris[f].begin(), old_tris[f].end());
-    std::sort(new_tris[f].begin(), new_tris[f].end());
+  for (Sz f = 0; f < old_tris.size(); ++f)
     if (old_tris[f] != new_tris[f]) ++changed;
-  }
   return changed;
 }
 
