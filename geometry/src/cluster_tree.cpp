@@ -13,6 +13,8 @@
 #include <panelrad/geometry/parallel_for.hpp>
 #include <panelrad/geometry/subdivision.hpp>
 
+#include <panelrad/geometry/bounding_box.hpp>
+
 #include <CGAL/Gmpq.h>
 #include <CGAL/Mpzf.h>
 
@@ -23,6 +25,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <ranges>
 #include <sstream>
 #include <string>
 
@@ -335,13 +338,7 @@ ClusterTree::ClusterTree(const TriangleMesh& mesh, int finest_level, std::size_t
     h = std::max({h, length(v[1] - v[0]), length(v[2] - v[1]), length(v[0] - v[2])});
   }
   mesh_size_ = h;
-  Vec3 lo = roots[0].vertex[0], hi = lo;
-  for (const Cluster& c : roots)
-    for (const Vec3& v : c.vertex) {
-      lo = lo.cwiseMin(v);
-      hi = hi.cwiseMax(v);
-    }
-  diameter_ = length(hi - lo);
+  diameter_ = bounding_box_diameter(roots | std::views::transform(&Cluster::vertex) | std::views::join);
 }
 
 }  // namespace panelrad::geometry

@@ -1,5 +1,7 @@
 #include <panelrad/operator/auto_parameters.hpp>
 
+#include <panelrad/geometry/bounding_box.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -37,13 +39,8 @@ ProblemSize problem_size(const geometry::TriangleMesh& mesh, int level) {
         throw std::invalid_argument("problem_size: vertex index out of range in '" + mesh.source + "'");
       longest = std::max(longest, (mesh.vertices[a] - mesh.vertices[b]).norm());
     }
-  Vec3 lo = mesh.vertices.front(), hi = mesh.vertices.front();
-  for (const Vec3& v : mesh.vertices) {
-    lo = lo.cwiseMin(v);
-    hi = hi.cwiseMax(v);
-  }
   s.mesh_size = std::ldexp(longest, -level);  // midpoint subdivision halves every edge
-  s.diameter = (hi - lo).norm();
+  s.diameter = geometry::bounding_box_diameter(mesh.vertices);
   return s;
 }
 
