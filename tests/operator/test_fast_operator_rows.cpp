@@ -176,6 +176,26 @@ TEST(FastOperatorRows, PartialOperatorRefusesTheWholeProduct) {
   EXPECT_EQ(y.size(), 192);
 }
 
+// The self-check of a partial operator samples its own rows only; with samples >= the rows held it
+// compares each of them with the exact rows, which agree with the whole operator's to the
+// product's accuracy at the paper's parameters (within 1e-3 of dense, test_fast_operator).
+TEST(FastOperatorRows, SelfCheckSamplesTheRowsHeld) {
+  const Scene scene = make_paper_cube_scene();
+  const Collocation col(scene, 2);
+  const FastOperator part(col, with_rows(FastOptions{}, 40, 77));
+  const FastSelfCheck all = part.self_check(1000);
+  ASSERT_EQ(all.rows, 37);
+  for (Index k = 0; k < 37; ++k) EXPECT_EQ(all.sampled_rows[static_cast<std::size_t>(k)], 40 + k);
+  EXPECT_GT(all.relative_error, 0.0);
+  EXPECT_LT(all.relative_error, 1e-3);
+  const FastSelfCheck some = part.self_check(8);
+  for (Index i : some.sampled_rows) {
+    EXPECT_GE(i, 40);
+    EXPECT_LT(i, 77);
+  }
+  EXPECT_EQ(FastOperator(col, with_rows(FastOptions{}, 5, 5)).self_check(8).rows, 0);
+}
+
 // A range outside [0, n] or with begin > end is refused by name, with n, by the operator and by
 // the memory estimate.
 TEST(FastOperatorRows, InvalidRangesAreRefusedNamingTheRangeAndN) {
