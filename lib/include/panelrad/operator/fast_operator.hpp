@@ -199,11 +199,12 @@ class FastOperator final : public RadiosityOperator {
   std::vector<double> element_moments_;           // per element: Int_Delta x^p y^q dS about A(Delta)
   // Near field (CSR over the rows held, row i at i - begin): element index and rho_i/pi Int G.
   // CSR rather than Eigen::SparseMatrix<double, RowMajor, StorageIndex>, measured on the cube,
-  // eta 0.2 (near pairs 5.6 a row at n = 49152, 2.8 at n = 196608): a 64-bit StorageIndex takes
-  // 16 bytes a pair against 12 (10.5 MB against 8.3 MB at n = 196608) at no gain in speed; a
-  // 32-bit one saves only the 4 bytes a row of the row starts, bounds the pairs by 2^31, and its
-  // product was not faster (50 near-field products, one thread: 0.096 s against 0.085 s at
-  // n = 196608, 0.039 s both at n = 49152). The near field is < 1% of a product's time.
+  // eta 0.2 (near pairs 5.6 a row at n = 49152, 2.8 at 196608, 1.4 at 786432): a 64-bit
+  // StorageIndex takes 16 bytes a pair against 12 (10.5 MB against 8.3 MB at n = 196608) and its
+  // product was slower; a 32-bit one saves only the 4 bytes a row of the row starts, bounds the
+  // pairs by 2^31, and its product was not faster on one thread (50 near-field products at
+  // n = 196608: 0.096 s and 0.183 s against 0.085 s and 0.171 s in two runs; 0.039 s both at
+  // 49152). Here the near sum is fused with the far sum of the same row, < 1% of its time.
   std::vector<std::int64_t> near_start_;
   std::vector<geometry::Index> near_col_;
   std::vector<double> near_val_;
