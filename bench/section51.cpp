@@ -4,11 +4,10 @@
 // all to the same accuracy. Prints times, errors, speed-ups and peak memory; optional CSV.
 //   usage: section51 [--levels L0 L1] [--threads T] [--csv PATH] [--skip-lu]
 #include <panelrad/operator/auto_parameters.hpp>
-#include <panelrad/operator/collocation.hpp>
 #include <panelrad/operator/dense_operator.hpp>
-#include <panelrad/operator/fast_operator.hpp>
 #include <panelrad/support/resources.hpp>
 #include <panelrad/scene/scene.hpp>
+#include <panelrad/solve/radiosity_solver.hpp>
 #include <panelrad/solve/solvers.hpp>
 #include <panelrad/io/text_output.hpp>
 
@@ -29,6 +28,27 @@ struct Timing {
   int iterations = 0;
   double total() const { return setup_s + solve_s; }
 };
+
+// One solver object on the cube at `level` with the rho of (31) in the operator's rows; the
+// Neumann iteration (34) to the tolerance tied to the discretization error (as the paper stopped
+// at the best possible accuracy). Setup: the cluster tree and the operator (E manufacturing is
+// test data, not counted).
+RadiositySolverOptions cube_options(int level, OperatorMethod method, const OperatorOptions& manual = {}) {
+  RadiositySolverOptions o;
+  o.level = level;
+  o.method = method;
+  o.manual = manual;
+  o.fold_reflectivity = true;
+  o.solver.kind = SolverKind::neumann;
+  return o;
+}
+
+Timing neumann_row(const std::string& what, const RadiositySolver& solver) {
+  const ChannelSolve r = solver.solve(0);
+  if (!r.converged()) throw SolverError(r.message);
+  return {what, solver.n(), solver.collocation().tree_seconds() + solver.info().operator_s, r.seconds,
+          solver.collocation().max_error(r.u), r.iterations};
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -56,44 +76,29 @@ int main(int argc, char** argv) {
   std::printf("%-38s %7s %10s %10s %10s %6s %11s %9s\n", "method", "n", "setup s", "solve s", "total s", "iters",
               "max error", "peak MB");
   for (int level = l0; level <= l1; ++level) {
-    const Collocation col(scene, level);
-    // Iterate to the same tolerance for all, tied to the discretization error (as the paper
-    // stopped at the best possible accuracy).
-    SolverOptions it;
-    it.tolerance = discretization_tolerance(col.tree().mesh_size(), col.tree().diameter());
     std::vector<Timing> rows;
-    Stopwatch clock;
     {
-      const DenseOperator dense(col, NearFieldOptions{});
-      const double setup = col.tree_seconds() + clock.seconds();
-      const auto neumann = solve_neumann(dense, col.emissivity(), it);
-      rows.push_back({"dense setup + Neumann", col.size(), setup, neumann.seconds, col.max_error(neumann.u),
-                      neumann.iterations});
-      if (!skip_lu) {
-        const auto lu = solve_lu(dense, col.emissivity());
-        rows.push_back({"dense setup + LU", col.size(), setup, lu.seconds, col.max_error(lu.u), 0});
+      const RadiositySolver dense(scene, cube_options(level, OperatorMethod::dense));
+      rows.push_back(neumann_row("dense setup + Neumann", dense));
+      if (!skip_lu) {  // the direct baseline on the same matrix
+        const Collocation& col = dense.collocation();
+        const auto lu = solve_lu(dynamic_cast<const DenseOperator&>(dense.op()), col.emissivity());
+        rows.push_back({"dense setup + LU", col.size(), rows.back().setup_s, lu.seconds, col.max_error(lu.u), 0});
       }
     }
     // The fast method with the paper's (eta, M) = (0.2, 2), and with the setting --accuracy auto
     // picks for this size (auto_parameters.hpp: the cheapest measured setting whose solution stays
     // within 5% of the discretization error, i.e. the same accuracy as the dense method).
     const std::size_t dense_rows = rows.size();
-    FastOptions paper;
-    const OperatorOptions chosen = choose_parameters(problem_size(scene.mesh(), level));
-    FastOptions automatic;
-    automatic.eta = chosen.eta;
-    automatic.degree = chosen.degree;
-    automatic.near = chosen.near;
-    char auto_name[64];
-    std::snprintf(auto_name, sizeof auto_name, "fast auto (%g, exact, M=%d) + Neumann", chosen.eta, chosen.degree);
-    std::vector<std::pair<std::string, FastOptions>> fast_runs = {{"fast (0.2, exact, M=2) + Neumann", paper}};
-    if (chosen.method == "fast") fast_runs.emplace_back(auto_name, automatic);  // dense for n <= 768
-    for (const auto& [name, options] : fast_runs) {
-      clock.restart();
-      const FastOperator fast(col, options);
-      const double setup = col.tree_seconds() + clock.seconds();
-      const auto fs = solve_neumann(fast, col.emissivity(), it);
-      rows.push_back({name, col.size(), setup, fs.seconds, col.max_error(fs.u), fs.iterations});
+    OperatorOptions paper;
+    paper.method = OperatorMethod::fast;  // eta 0.2, M 2, exact near field
+    rows.push_back(neumann_row("fast (0.2, exact, M=2) + Neumann", RadiositySolver(scene, cube_options(level, OperatorMethod::fast, paper))));
+    if (choose_parameters(problem_size(scene.mesh(), level)).method == OperatorMethod::fast) {  // dense for n <= 768
+      const RadiositySolver automatic(scene, cube_options(level, OperatorMethod::automatic));
+      char auto_name[64];
+      std::snprintf(auto_name, sizeof auto_name, "fast auto (%g, exact, M=%d) + Neumann", automatic.parameters().eta,
+                    automatic.parameters().degree);
+      rows.push_back(neumann_row(auto_name, automatic));
     }
     for (const auto& r : rows) {
       std::printf("%-38s %7d %10.3f %10.3f %10.3f %6d %11.4e %9.0f\n", r.what.c_str(), static_cast<int>(r.n), r.setup_s,

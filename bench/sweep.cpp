@@ -228,16 +228,19 @@ void mark_front(std::vector<Run*> runs, bool Run::*flag) {
   }
 }
 
+// The sweep times each operator's setup and solve on one shared collocation (the manufactured E
+// of a level is computed once for all runs, so it builds the operators by hand; the solve
+// pipeline itself is RadiositySolver's).
 Run run_one(const Scene& scene, const std::string& scene_name, const Collocation& col, const OperatorOptions& op,
             const SolverOptions& solver, bool rss_reset, Eigen::VectorXd& u) {
   Run r;
   r.scene = scene_name;
   r.n = col.size();
   r.level = col.level();
-  r.method = op.method;
+  r.method = to_string(op.method);
   r.near = to_string(op.near.rule);
   r.mu = op.near.rule == NearRule::quadrature ? op.near.mu : 0;
-  if (op.method == "fast") {
+  if (op.method == OperatorMethod::fast) {
     r.eta = op.eta;
     r.degree = op.degree;
   }
@@ -246,6 +249,7 @@ Run run_one(const Scene& scene, const std::string& scene_name, const Collocation
   const auto K = make_operator(col, op);
   r.setup_s = col.tree_seconds() + clock.seconds();  // refinement + tree + operator
   const SolveResult s = solve(*K, col.emissivity(), solver, scene.max_reflectivity());
+  require_converged(s);  // a sweep row is only meaningful at the tolerance
   r.solve_s = s.seconds;
   r.iterations = s.iterations;
   r.max_error = col.max_error(s.u);  // (51)
@@ -297,16 +301,14 @@ void summarize_level(const std::vector<Run>& runs, const std::string& scene, Ind
   }
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  Config cfg;
-  cfg.nears = {parse_near("exact"), parse_near("q2")};
+/// Reads the command line into cfg; returns 0 to go on, else the exit status (help: 0 printed).
+int parse_config(int argc, char** argv, Config& cfg, bool& help) {
   try {
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
       if (a == "-h" || a == "--help") {
         std::cout << kUsage;
+        help = true;
         return 0;
       }
       if (a == "--quick") continue;  // the defaults
@@ -367,92 +369,89 @@ int main(int argc, char** argv) {
     std::cerr << "sweep: " << e.what() << "\n" << kUsage;
     return 2;
   }
-  set_threads(cfg.threads);
-  const bool rss_reset = reset_peak_rss();
-  SolverOptions solver;  // Neumann (34) for every run, to the same tolerance
-  solver.tolerance = cfg.tol;
+  return 0;
+}
 
-  std::printf("sweep: threads %d, Neumann tol %.1e, peak RSS %s\n", max_threads(), cfg.tol,
-              rss_reset ? "per run (VmHWM reset)" : "cumulative (cannot reset VmHWM)");
-  std::vector<Run> runs;
-  try {
-    for (const std::string& scene_name : cfg.scenes) {
-      const Scene scene = scene_name == "cube" ? make_paper_cube_scene() : make_prism_scene();
-      const int lo = scene_name == "cube" ? cfg.cube_lo : cfg.prism_lo;
-      const int hi = scene_name == "cube" ? cfg.cube_hi : cfg.prism_hi;
-      for (int level = lo; level <= hi; ++level) {
-        const Collocation col(scene, level);  // E manufactured once per (scene, level), reused below
-        std::printf("\n%s level %d: n = %d, h/diam = %.4g, E manufactured in %.2f s (not counted)\n",
-                    scene_name.c_str(), level, static_cast<int>(col.size()),
-                    col.tree().mesh_size() / col.tree().diameter(), col.emissivity_seconds());
-        std::printf("  %-24s %5s %3s %11s %10s %9s %9s %5s %8s\n", "run", "eta", "M", "max error", "deviation",
-                    "setup s", "solve s", "iters", "peak MB");
-        std::vector<OperatorOptions> ops;
-        if (col.size() <= cfg.dense_max_n) {
-          OperatorOptions reference;  // dense, exact near rule: first, it is the reference
-          reference.method = "dense";
-          ops.push_back(reference);
-          for (const auto& nc : cfg.nears) {
-            if (nc.options.rule == NearRule::exact) continue;
-            OperatorOptions o;
-            o.method = "dense";
-            o.near = nc.options;
-            ops.push_back(o);
-          }
-        }
-        if (col.size() <= cfg.fast_max_n)
-          for (const auto& nc : cfg.nears)
-            for (double eta : cfg.etas)
-              for (int m : cfg.degrees) {
-                OperatorOptions o;
-                o.method = "fast";
-                o.near = nc.options;
-                o.eta = eta;
-                o.degree = m;
-                ops.push_back(o);
-              }
-        std::optional<Eigen::VectorXd> u_ref;
-        // Pruning (--prune): the degrees of one (near rule, eta) run in increasing order and stop
-        // one degree after the first faithful run (a higher M only costs more); a quadrature
-        // near rule whose dense run is not faithful is not tried with the fast method (its
-        // near-field error alone exceeds the 5% margin).
-        std::map<std::string, int> faithful_seen;  // (near, eta) -> faithful runs so far
-        std::map<int, bool> dense_quad_faithful;   // mu -> dense quadrature run faithful
-        for (const OperatorOptions& op : ops) {
-          const int mu = op.near.rule == NearRule::quadrature ? op.near.mu : -1;
-          const std::string key = std::to_string(mu) + "/" + std::to_string(op.eta);
-          if (cfg.prune && op.method == "fast" && u_ref) {
-            if (mu >= 0 && dense_quad_faithful.count(mu) && !dense_quad_faithful[mu]) continue;
-            if (faithful_seen[key] >= 2) continue;
-          }
-          Eigen::VectorXd u;
-          Run r = run_one(scene, scene_name, col, op, solver, rss_reset, u);
-          for (int rep = 1; rep < cfg.repeat && r.total() < 1.0; ++rep) {  // timing noise: best of
-            Eigen::VectorXd u2;
-            const Run again = run_one(scene, scene_name, col, op, solver, rss_reset, u2);
-            if (again.total() < r.total()) r = again;
-          }
-          if (!u_ref && op.method == "dense" && op.near.rule == NearRule::exact) u_ref = u;
-          if (u_ref) {
-            r.deviation = (u - *u_ref).lpNorm<Eigen::Infinity>();
-            r.reference_error = col.max_error(*u_ref);
-          }
-          if (op.method == "dense" && mu >= 0) dense_quad_faithful[mu] = r.faithful();
-          if (op.method == "fast" && (r.faithful() || faithful_seen[key] > 0)) ++faithful_seen[key];
-          std::printf("  %-24s %5s %3s %11.4e %10.3e %9.3f %9.3f %5d %8.0f\n", r.series().c_str(),
-                      r.method == "fast" ? (std::ostringstream() << r.eta).str().c_str() : "",
-                      r.method == "fast" ? std::to_string(r.degree).c_str() : "", r.max_error, r.deviation,
-                      r.setup_s, r.solve_s, r.iterations, r.peak_rss_mb);
-          std::fflush(stdout);
-          runs.push_back(r);
-        }
-        summarize_level(runs, scene_name, col.size());
-      }
+/// The operators run at n elements: the dense exact reference first, then the other near rules,
+/// then the fast grid.
+std::vector<OperatorOptions> planned_operators(const Config& cfg, Index n) {
+  std::vector<OperatorOptions> ops;
+  if (n <= cfg.dense_max_n) {
+    OperatorOptions reference;  // dense, exact near rule: first, it is the reference
+    reference.method = OperatorMethod::dense;
+    ops.push_back(reference);
+    for (const auto& nc : cfg.nears) {
+      if (nc.options.rule == NearRule::exact) continue;
+      OperatorOptions o;
+      o.method = OperatorMethod::dense;
+      o.near = nc.options;
+      ops.push_back(o);
     }
-  } catch (const std::exception& e) {
-    std::cerr << "sweep: error: " << e.what() << "\n";
-    return 1;
   }
+  if (n <= cfg.fast_max_n)
+    for (const auto& nc : cfg.nears)
+      for (double eta : cfg.etas)
+        for (int m : cfg.degrees) {
+          OperatorOptions o;
+          o.method = OperatorMethod::fast;
+          o.near = nc.options;
+          o.eta = eta;
+          o.degree = m;
+          ops.push_back(o);
+        }
+  return ops;
+}
+
+/// One (scene, level): every planned operator on one collocation (E manufactured once).
+void sweep_level(const Config& cfg, const Scene& scene, const std::string& scene_name, int level,
+                 const SolverOptions& solver, bool rss_reset, std::vector<Run>& runs) {
+  const Collocation col(scene, level);  // E manufactured once per (scene, level), reused below
+  std::printf("\n%s level %d: n = %d, h/diam = %.4g, E manufactured in %.2f s (not counted)\n",
+              scene_name.c_str(), level, static_cast<int>(col.size()),
+              col.tree().mesh_size() / col.tree().diameter(), col.emissivity_seconds());
+  std::printf("  %-24s %5s %3s %11s %10s %9s %9s %5s %8s\n", "run", "eta", "M", "max error", "deviation",
+              "setup s", "solve s", "iters", "peak MB");
+  const std::vector<OperatorOptions> ops = planned_operators(cfg, col.size());
+  std::optional<Eigen::VectorXd> u_ref;
+  // Pruning (--prune): the degrees of one (near rule, eta) run in increasing order and stop
+  // one degree after the first faithful run (a higher M only costs more); a quadrature
+  // near rule whose dense run is not faithful is not tried with the fast method (its
+  // near-field error alone exceeds the 5% margin).
+  std::map<std::string, int> faithful_seen;  // (near, eta) -> faithful runs so far
+  std::map<int, bool> dense_quad_faithful;   // mu -> dense quadrature run faithful
+  for (const OperatorOptions& op : ops) {
+    const int mu = op.near.rule == NearRule::quadrature ? op.near.mu : -1;
+    const std::string key = std::to_string(mu) + "/" + std::to_string(op.eta);
+    if (cfg.prune && op.method == OperatorMethod::fast && u_ref) {
+      if (mu >= 0 && dense_quad_faithful.count(mu) && !dense_quad_faithful[mu]) continue;
+      if (faithful_seen[key] >= 2) continue;
+    }
+    Eigen::VectorXd u;
+    Run r = run_one(scene, scene_name, col, op, solver, rss_reset, u);
+    for (int rep = 1; rep < cfg.repeat && r.total() < 1.0; ++rep) {  // timing noise: best of
+      Eigen::VectorXd u2;
+      const Run again = run_one(scene, scene_name, col, op, solver, rss_reset, u2);
+      if (again.total() < r.total()) r = again;
+    }
+    if (!u_ref && op.method == OperatorMethod::dense && op.near.rule == NearRule::exact) u_ref = u;
+    if (u_ref) {
+      r.deviation = (u - *u_ref).lpNorm<Eigen::Infinity>();
+      r.reference_error = col.max_error(*u_ref);
+    }
+    if (op.method == OperatorMethod::dense && mu >= 0) dense_quad_faithful[mu] = r.faithful();
+    if (op.method == OperatorMethod::fast && (r.faithful() || faithful_seen[key] > 0)) ++faithful_seen[key];
+    std::printf("  %-24s %5s %3s %11.4e %10.3e %9.3f %9.3f %5d %8.0f\n", r.series().c_str(),
+                r.method == "fast" ? (std::ostringstream() << r.eta).str().c_str() : "",
+                r.method == "fast" ? std::to_string(r.degree).c_str() : "", r.max_error, r.deviation,
+                r.setup_s, r.solve_s, r.iterations, r.peak_rss_mb);
+    std::fflush(stdout);
+    runs.push_back(r);
+  }
+  summarize_level(runs, scene_name, col.size());
+}
+
+/// Marks the Pareto fronts of each scene and prints them.
+void report_fronts(const Config& cfg, std::vector<Run>& runs) {
   // Pareto fronts per scene: of each series (method + near rule) and of all runs.
   for (const std::string& scene_name : cfg.scenes) {
     std::map<std::string, std::vector<Run*>> series;
@@ -465,19 +464,9 @@ int main(int argc, char** argv) {
     for (auto& [name, list] : series) mark_front(list, &Run::series_front);
     mark_front(all, &Run::pareto);
   }
-  std::ostringstream csv;
-  csv << csv_header() << "\n";
-  for (const Run& r : runs) csv << csv_line(r) << "\n";
-  const std::filesystem::path dir(cfg.out);
-  std::string csv_path = (dir / (cfg.tag + ".csv")).string();
-  try {
-    std::filesystem::create_directories(dir);
-    write_file_atomically(csv_path, csv.str());
-  } catch (const std::exception& e) {
-    std::cerr << "sweep: error: " << e.what() << "\n";
-    return 1;
-  }
-  std::printf("\nwrote %s (%zu runs)\n", csv_path.c_str(), runs.size());
+}
+
+void print_fronts(const Config& cfg, const std::vector<Run>& runs) {
   for (const std::string& scene_name : cfg.scenes) {
     std::printf("\nPareto front, %s (error against setup + solve time; runs within 5%% of the discretization error):\n",
                 scene_name.c_str());
@@ -492,6 +481,51 @@ int main(int argc, char** argv) {
                   r->method == "fast" ? std::to_string(r->degree).c_str() : "", r->max_error, r->total(),
                   r->peak_rss_mb);
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Config cfg;
+  cfg.nears = {parse_near("exact"), parse_near("q2")};
+  bool help = false;
+  if (const int status = parse_config(argc, argv, cfg, help); status != 0 || help) return status;
+  set_threads(cfg.threads);
+  const bool rss_reset = reset_peak_rss();
+  SolverOptions solver;  // Neumann (34) for every run, to the same tolerance
+  solver.tolerance = cfg.tol;
+
+  std::printf("sweep: threads %d, Neumann tol %.1e, peak RSS %s\n", max_threads(), cfg.tol,
+              rss_reset ? "per run (VmHWM reset)" : "cumulative (cannot reset VmHWM)");
+  std::vector<Run> runs;
+  try {
+    for (const std::string& scene_name : cfg.scenes) {
+      const Scene scene = scene_name == "cube" ? make_paper_cube_scene() : make_prism_scene();
+      const int lo = scene_name == "cube" ? cfg.cube_lo : cfg.prism_lo;
+      const int hi = scene_name == "cube" ? cfg.cube_hi : cfg.prism_hi;
+      for (int level = lo; level <= hi; ++level) {
+        sweep_level(cfg, scene, scene_name, level, solver, rss_reset, runs);
+      }
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "sweep: error: " << e.what() << "\n";
+    return 1;
+  }
+  report_fronts(cfg, runs);
+  std::ostringstream csv;
+  csv << csv_header() << "\n";
+  for (const Run& r : runs) csv << csv_line(r) << "\n";
+  const std::filesystem::path dir(cfg.out);
+  std::string csv_path = (dir / (cfg.tag + ".csv")).string();
+  try {
+    std::filesystem::create_directories(dir);
+    write_file_atomically(csv_path, csv.str());
+  } catch (const std::exception& e) {
+    std::cerr << "sweep: error: " << e.what() << "\n";
+    return 1;
+  }
+  std::printf("\nwrote %s (%zu runs)\n", csv_path.c_str(), runs.size());
+  print_fronts(cfg, runs);
   if (cfg.plot) {
     int status = 0;
     for (const std::string& scene_name : cfg.scenes) {

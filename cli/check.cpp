@@ -1,11 +1,13 @@
 // panelrad check: read and validate a mesh file or a built-in scene, print what it is.
 #include "commands.hpp"
+#include "options.hpp"
 
 #include <panelrad/geometry/builtin_scenes.hpp>
 #include <panelrad/geometry/mesh_io.hpp>
 #include <panelrad/geometry/validation.hpp>
 
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -13,45 +15,24 @@
 namespace panelrad::cli {
 namespace {
 
-void check_usage(std::ostream& os) {
-  os << "usage: panelrad check MESH\n"
-        "       panelrad check --builtin cube|prism:K|tetrahedron|octahedron\n"
-        "Reads an OFF or OBJ mesh (or builds a built-in scene) and validates it exactly as a closed\n"
-        "convex polyhedron. Exit status: 0 valid, 1 invalid or unreadable, 2 usage error.\n";
-}
+const char* kCheckUsage =
+    "usage: panelrad check MESH\n"
+    "       panelrad check --builtin cube|prism:K|tetrahedron|octahedron\n"
+    "Reads an OFF or OBJ mesh (or builds a built-in scene) and validates it exactly as a closed\n"
+    "convex polyhedron. Exit status: 0 valid, 1 invalid or unreadable, 2 usage error.\n";
 
-int usage_error(const std::string& what) {
-  std::cerr << "panelrad check: " << what << "\n";
-  check_usage(std::cerr);
-  return 2;
-}
+/// What the command line says.
+struct CheckCommandLine {
+  std::string file;     ///< MESH
+  std::string builtin;  ///< --builtin NAME
+};
 
-}  // namespace
-
-int run_check(int argc, char** argv) {
+int run_check(const CLI::App& app, const CheckCommandLine& line) {
+  const bool file_given = app.count("MESH") > 0, builtin_given = app.count("--builtin") > 0;
+  if (!file_given && !builtin_given) throw UsageError("no mesh given");
   std::optional<std::string> file, builtin;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--help" || arg == "-h") {
-      check_usage(std::cout);
-      return 0;
-    }
-    if (arg == "--builtin" || arg.rfind("--builtin=", 0) == 0) {
-      if (builtin) return usage_error("--builtin given twice");
-      if (arg == "--builtin") {
-        if (i + 1 >= argc) return usage_error("--builtin needs a scene name");
-        builtin = argv[++i];
-      } else {
-        builtin = arg.substr(10);
-      }
-      continue;
-    }
-    if (arg.size() > 1 && arg[0] == '-') return usage_error("unknown option '" + arg + "'");
-    if (file) return usage_error("too many arguments ('" + *file + "' and '" + arg + "')");
-    file = arg;
-  }
-  if (!file && !builtin) return usage_error("no mesh given");
-  if (file && builtin) return usage_error("give either a mesh file or --builtin, not both");
+  if (file_given) file = line.file;
+  if (builtin_given) builtin = line.builtin;
 
   geometry::TriangleMesh mesh;
   std::vector<std::string> notes;
@@ -59,7 +40,7 @@ int run_check(int argc, char** argv) {
     try {
       mesh = geometry::make_builtin(*builtin);
     } catch (const geometry::MeshError& e) {
-      return usage_error(e.what());
+      throw UsageError(e.what());
     }
   } else {
     try {
@@ -96,6 +77,19 @@ int run_check(int argc, char** argv) {
   }
   std::cout << "invalid: " << report.message << "\n";
   return 1;
+}
+
+}  // namespace
+
+Command add_check(CLI::App& panelrad) {
+  auto line = std::make_shared<CheckCommandLine>();
+  CLI::App* app = panelrad.add_subcommand("check", "validate a closed convex polyhedral mesh (OFF or OBJ)");
+  set_usage(*app, kCheckUsage);
+  CLI::Option* mesh = app->add_option("MESH", line->file, "an OFF or OBJ mesh");
+  CLI::Option* builtin =
+      app->add_option("--builtin", line->builtin, "cube|prism:K|tetrahedron|octahedron")->type_name("NAME");
+  mesh->excludes(builtin);
+  return {app, [app, line] { return run_check(*app, *line); }};
 }
 
 }  // namespace panelrad::cli

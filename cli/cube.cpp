@@ -1,5 +1,6 @@
 // panelrad cube: the paper's cube example (section 3, Table 1; section 5, Tables 2-4).
 #include "commands.hpp"
+#include "hints.hpp"
 #include "options.hpp"
 
 #include <panelrad/operator/auto_parameters.hpp>
@@ -10,6 +11,7 @@
 #include <filesystem>
 
 #include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -28,67 +30,78 @@ const char* kCubeUsage =
     "  that the error stays within 5% of the discretization error at the least measured cost\n"
     "  (auto_parameters.hpp); any of --method --near --mu --rule --eta --degree, or --solver lu,\n"
     "  means manual (defaults for the rest: dense, exact near field, eta 0.2, M 2).\n";
-}  // namespace
 
-int run_cube(int argc, char** argv) {
+/// --csv PATH: a file (the empty path: no CSV); a path whose last part names a directory ("d/",
+/// "d/.", "..") is a usage error.
+CLI::Validator csv_file() {
+  return CLI::Validator(
+      [](std::string& path) {
+        const std::string name = std::filesystem::path(path).filename().string();
+        if (!path.empty() && (name.empty() || name == "." || name == ".."))
+          return "the path '" + path + "' names a directory, not a file";
+        return std::string();
+      },
+      "", "csv_file");
+}
+
+/// What the command line says, in the library's option structs.
+struct CubeCommandLine {
   CubeRunOptions o;
-  o.solver.tolerance = 0;  // auto: tied to the discretization error
   std::string csv;
   int threads = 0;
   std::string accuracy;    // "", "auto" or "manual" as given
   std::string manual_opt;  // the first option that sets a parameter by hand
-  try {
-    for (int i = 1; i < argc; ++i) {
-      const std::string a = argv[i];
-      if (a == "-h" || a == "--help") {
-        std::cout << kCubeUsage;
-        return 0;
-      }
-      if (i + 1 >= argc) throw UsageError("option '" + a + "' needs a value (or is unknown)");
-      const std::string v = argv[++i];
-      if (a == "--method" || a == "--near" || a == "--mu" || a == "--rule" || a == "--eta" || a == "--degree") {
-        if (manual_opt.empty()) manual_opt = a;
-      }
-      if (a == "--accuracy") {
-        if (v != "auto" && v != "manual") throw UsageError("--accuracy must be auto or manual, got '" + v + "'");
-        accuracy = v;
-      } else if (a == "--levels") o.max_level = parse_int(a, v, 0, 12);
-      else if (a == "--min-level") o.min_level = parse_int(a, v, 0, 12);
-      else if (a == "--method") {
-        if (v != "dense" && v != "fast") throw UsageError("--method must be dense or fast, got '" + v + "'");
-        o.op.method = v;
-      } else if (a == "--near") {
-        if (v != "exact" && v != "quadrature") throw UsageError("--near must be exact or quadrature, got '" + v + "'");
-        o.op.near.rule = parse_near_rule(v);
-      } else if (a == "--mu") o.op.near.mu = parse_int(a, v, 0, 6);
-      else if (a == "--rule") {
-        check_quadrature_rule(a, v);
-        o.op.near.basic_rule = v;
-      } else if (a == "--eta") o.op.eta = parse_double(a, v, 1e-3, 0.99);
-      else if (a == "--degree") o.op.degree = parse_int(a, v, 0, 12);
-      else if (a == "--solver") {
-        if (v != "auto" && v != "neumann" && v != "gmres" && v != "lu")
-          throw UsageError("--solver must be auto, neumann, gmres or lu, got '" + v + "'");
-        o.solver.kind = parse_solver(v);
-      } else if (a == "--tol") o.solver.tolerance = v == "auto" ? 0.0 : parse_double(a, v, 1e-15, 0.5);
-      else if (a == "--threads") threads = parse_threads(a, v);
-      else if (a == "--csv") csv = v;
-      else throw UsageError("unknown option '" + a + "'");
+  CubeCommandLine() { o.solver.tolerance = 0; }  // auto: tied to the discretization error
+};
+
+void add_cube_options(CLI::App& app, CubeCommandLine& line) {
+  app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);  // repeated: the last counts
+  CubeRunOptions& o = line.o;
+  app.add_option("--accuracy", line.accuracy)->type_name("auto|manual")->check(one_of({"auto", "manual"}));
+  app.add_option("--levels", o.max_level)->type_name("L")->transform(integer_in(0, 12));
+  app.add_option("--min-level", o.min_level)->type_name("L0")->transform(integer_in(0, 12));
+  app.add_option_function<std::string>("--method", [&o](const std::string& v) { o.op.method = parse_operator_method(v); })
+      ->type_name("dense|fast")
+      ->check(one_of({"dense", "fast"}));
+  app.add_option_function<std::string>("--near", [&o](const std::string& v) { o.op.near.rule = parse_near_rule(v); })
+      ->type_name("exact|quadrature")
+      ->check(one_of({"exact", "quadrature"}));
+  app.add_option("--mu", o.op.near.mu)->type_name("K")->transform(integer_in(0, 6));
+  app.add_option("--rule", o.op.near.basic_rule)->type_name("RULE")->check(quadrature_rule());
+  app.add_option("--eta", o.op.eta)->type_name("E")->transform(number_in(1e-3, 0.99));
+  app.add_option("--degree", o.op.degree)->type_name("M")->transform(integer_in(0, 12));
+  app.add_option_function<std::string>("--solver", [&o](const std::string& v) { o.solver.kind = parse_solver(v); })
+      ->type_name("auto|neumann|gmres|lu")
+      ->check(one_of({"auto", "neumann", "gmres", "lu"}));
+  app.add_option("--tol", o.solver.tolerance)->type_name("T|auto")->transform(tolerance_in(1e-15, 0.5));
+  app.add_option("--threads", line.threads)->type_name("T")->transform(thread_count());
+  app.add_option("--csv", line.csv)->type_name("PATH")->check(csv_file());
+}
+
+/// The combinations of options, once the command line is parsed.
+void check_cube_options(const CLI::App& app, CubeCommandLine& line) {
+  for (const CLI::Option* opt : app.parse_order()) {
+    const std::string name = opt->get_name();
+    if (name == "--method" || name == "--near" || name == "--mu" || name == "--rule" || name == "--eta" ||
+        name == "--degree") {
+      line.manual_opt = name;
+      break;
     }
-    if (o.min_level > o.max_level) throw UsageError("--min-level is above --levels");
-    if (accuracy == "auto" && !manual_opt.empty())
-      throw UsageError("--accuracy auto chooses the parameters itself; " + manual_opt + " needs --accuracy manual");
-    if (o.solver.kind == SolverKind::lu && o.op.method != "dense")
-      throw UsageError("--solver lu needs --method dense");
-    if (!csv.empty()) {
-      const std::string name = std::filesystem::path(csv).filename().string();
-      if (name.empty() || name == "." || name == "..")
-        throw UsageError("--csv '" + csv + "': the path names a directory, not a file");
-    }
-  } catch (const UsageError& e) {
-    std::cerr << "panelrad cube: " << e.what() << "\n" << kCubeUsage;
-    return 2;
   }
+  const CubeRunOptions& o = line.o;
+  if (o.min_level > o.max_level) throw UsageError("--min-level is above --levels");
+  if (line.accuracy == "auto" && !line.manual_opt.empty())
+    throw UsageError("--accuracy auto chooses the parameters itself; " + line.manual_opt +
+                     " needs --accuracy manual");
+  if (o.solver.kind == SolverKind::lu && o.op.method != OperatorMethod::dense) throw UsageError("--solver lu needs --method dense");
+}
+
+int run_cube(const CubeCommandLine& line) {
+  const CubeRunOptions& o = line.o;
+  const std::string& csv = line.csv;
+  const std::string& accuracy = line.accuracy;
+  const std::string& manual_opt = line.manual_opt;
+  const int threads = line.threads;
   set_threads(threads);
   // SIGINT/SIGTERM/SIGHUP remove the CSV's temporary and end the run (status 128 + signal).
   install_output_signal_handlers();
@@ -101,10 +114,8 @@ int run_cube(int argc, char** argv) {
     }
   }
   // --solver lu needs the dense matrix: it implies manual (dense) unless auto was asked for.
-  if (accuracy == "auto" && o.solver.kind == SolverKind::lu) {
-    std::cerr << "panelrad cube: --solver lu needs --accuracy manual (dense)\n" << kCubeUsage;
-    return 2;
-  }
+  if (accuracy == "auto" && o.solver.kind == SolverKind::lu)
+    throw UsageError("--solver lu needs --accuracy manual (dense)");
   const bool automatic = accuracy != "manual" && manual_opt.empty() && o.solver.kind != SolverKind::lu;
   std::vector<CubeRow> rows;
   try {
@@ -122,7 +133,7 @@ int run_cube(int argc, char** argv) {
         group.tighten_on_failed_check = true;  // the self-check can only make it stricter
         group.min_level = level;
         while (level + 1 <= o.max_level &&
-               describe_parameters(choose_parameters(problem_size(cube, level + 1))) == describe_parameters(group.op))
+               choose_parameters(problem_size(cube, level + 1)) == group.op)
           ++level;
         group.max_level = level++;
         std::cout << "accuracy auto: levels " << group.min_level << ".." << group.max_level << ": "
@@ -143,6 +154,7 @@ int run_cube(int argc, char** argv) {
     }
   } catch (const std::exception& e) {
     std::cerr << "panelrad cube: error: " << e.what() << "\n";
+    if (const std::string hint = hint_for(e); !hint.empty()) std::cerr << "panelrad cube: " << hint << "\n";
     return 1;
   }
   if (!rows.empty()) std::cout << "solver: " << rows.back().solver << "\n";
@@ -152,6 +164,19 @@ int run_cube(int argc, char** argv) {
     std::cout << "wrote " << csv << "\n";
   }
   return 0;
+}
+
+}  // namespace
+
+Command add_cube(CLI::App& panelrad) {
+  auto line = std::make_shared<CubeCommandLine>();
+  CLI::App* app = panelrad.add_subcommand("cube", "the paper's cube example (Table 1)");
+  set_usage(*app, kCubeUsage);
+  add_cube_options(*app, *line);
+  return {app, [app, line] {
+            check_cube_options(*app, *line);
+            return run_cube(*line);
+          }};
 }
 
 }  // namespace panelrad::cli

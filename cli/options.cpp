@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
+#include <utility>
 
 namespace panelrad::cli {
 
@@ -19,43 +20,95 @@ std::string show_number(double v) {
   std::snprintf(buf, sizeof buf, "%g", v);
   return buf;
 }
-}  // namespace
 
-int parse_int(const std::string& option, const std::string& value, int lo, int hi) {
+// The exact text of a double: hexadecimal, read back without rounding by strtod and strtold.
+std::string exact_text(double v) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%a", v);
+  return buf;
+}
+
+// value as an integer in [lo, hi], or an error message (empty on success).
+std::string read_integer(std::string& value, long lo, long hi) {
   char* end = nullptr;
   errno = 0;
   const long v = std::strtol(value.c_str(), &end, 10);
   if (value.empty() || *end != '\0' || errno != 0 || v < lo || v > hi)
-    throw UsageError(option + " needs an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
-                     "], got '" + value + "'");
-  return static_cast<int>(v);
+    return "needs an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got '" + value + "'";
+  value = std::to_string(v);
+  return {};
 }
 
-double parse_double(const std::string& option, const std::string& value, double lo, double hi) {
+std::string read_number(std::string& value, double lo, double hi) {
   char* end = nullptr;
   const double v = std::strtod(value.c_str(), &end);
   if (value.empty() || *end != '\0' || !std::isfinite(v) || v < lo || v > hi)
-    throw UsageError(option + " needs a number in [" + show_number(lo) + ", " + show_number(hi) + "], got '" +
-                     value + "'");
-  return v;
+    return "needs a number in [" + show_number(lo) + ", " + show_number(hi) + "], got '" + value + "'";
+  value = exact_text(v);
+  return {};
+}
+}  // namespace
+
+CLI::Validator integer_in(int lo, int hi) {
+  return CLI::Validator([lo, hi](std::string& value) { return read_integer(value, lo, hi); },
+                        "", "integer_in");
 }
 
-int parse_threads(const std::string& option, const std::string& value) {
-  const int limit = max_useful_threads();
-  const int t = parse_int(option, value, 0, 1 << 20);
-  if (t > limit)
-    throw UsageError(option + " " + value + " is more than the " + std::to_string(limit) +
-                     " threads that can help here (4 per processor available to this process, and at most "
-                     "the OpenMP thread limit); 0 uses the default, " + std::to_string(max_threads()));
-  return t;
+CLI::Validator number_in(double lo, double hi) {
+  return CLI::Validator([lo, hi](std::string& value) { return read_number(value, lo, hi); },
+                        "", "number_in");
 }
 
-void check_quadrature_rule(const std::string& option, const std::string& value) {
-  try {
-    (void)quadrature::rule_by_name(value);  // the parser the near-field integrator uses
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(option + ": " + e.what());
-  }
+CLI::Validator tolerance_in(double lo, double hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& value) {
+        if (value == "auto") {
+          value = "0";
+          return std::string();
+        }
+        const std::string given = value;
+        if (read_number(value, lo, hi).empty()) return std::string();
+        return "needs a number in [" + show_number(lo) + ", " + show_number(hi) + "] or auto, got '" + given + "'";
+      },
+      "", "tolerance_in");
+}
+
+CLI::Validator thread_count() {
+  return CLI::Validator(
+      [](std::string& value) {
+        const std::string given = value;
+        if (std::string e = read_integer(value, 0, 1 << 20); !e.empty()) return e;
+        const int limit = max_useful_threads();
+        if (std::stoi(value) > limit)
+          return given + " is more than the " + std::to_string(limit) +
+                 " threads that can help here (4 per processor available to this process, and at most "
+                 "the OpenMP thread limit); 0 uses the default, " + std::to_string(max_threads());
+        return std::string();
+      },
+      "", "thread_count");
+}
+
+CLI::Validator quadrature_rule() {
+  return CLI::Validator(
+      [](std::string& value) {
+        try {
+          (void)quadrature::rule_by_name(value);  // the parser the near-field integrator uses
+        } catch (const std::invalid_argument& e) {
+          return std::string(e.what());
+        }
+        return std::string();
+      },
+      "", "quadrature_rule");
+}
+
+CLI::Validator one_of(std::vector<std::string> names) {
+  CLI::Validator member = CLI::IsMember(std::move(names));
+  member.description("");
+  return member;
+}
+
+void set_usage(CLI::App& app, const char* usage) {
+  app.formatter_fn([usage](const CLI::App*, std::string, CLI::AppFormatMode) { return std::string(usage); });
 }
 
 }  // namespace panelrad::cli

@@ -1,23 +1,45 @@
 #pragma once
-// Minimal strict option parsing for the sub-commands: unknown options and bad values are usage
-// errors (exit status 2) with a message saying which.
+// Strict option checks for the sub-commands, as CLI11 validators. A bad value is a usage error
+// (exit status 2); CLI11 puts the option's name in front of the validator's message, e.g.
+// "--eta: needs a number in [0.001, 0.99], got '2'". Their descriptions are empty: the usage texts
+// (set_usage) document the options, and CLI11 adds a description to the value's name in its
+// messages ("--levels: 1 required L missing").
+#include <CLI/CLI.hpp>
+
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace panelrad::cli {
 
+/// A usage error found after parsing: options that exclude or need each other, a name the
+/// library refuses (exit status 2, with the sub-command's usage).
 class UsageError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
 
-int parse_int(const std::string& option, const std::string& value, int lo, int hi);
-double parse_double(const std::string& option, const std::string& value, double lo, double hi);
+/// An integer in [lo, hi], read in base 10 (strtol). It is passed on in canonical decimal, so
+/// CLI11's own conversion (strtoll with base 0, which would read "010" as octal) gets the same
+/// integer.
+CLI::Validator integer_in(int lo, int hi);
+/// A finite number in [lo, hi], read with strtod. It is passed on as the exact hexadecimal form
+/// of that double, so CLI11's own conversion (strtold, then a second rounding to double) gets
+/// the same double bit for bit.
+CLI::Validator number_in(double lo, double hi);
+/// --tol: "auto" (passed on as 0: tied to the discretization error) or a number in [lo, hi].
+CLI::Validator tolerance_in(double lo, double hi);
 /// --threads T: 0 (the default) up to max_useful_threads(); more is a usage error saying the limit
 /// (thousands of threads would only exhaust the address space and make the OpenMP runtime abort).
-int parse_threads(const std::string& option, const std::string& value);
+CLI::Validator thread_count();
 /// A basic quadrature rule name as the near field accepts it (quadrature::rule_by_name); an
 /// unknown one is a usage error listing the valid names.
-void check_quadrature_rule(const std::string& option, const std::string& value);
+CLI::Validator quadrature_rule();
+
+/// One of the given names (CLI::IsMember: "--method: sparse not in {dense,fast}").
+CLI::Validator one_of(std::vector<std::string> names);
+
+/// The sub-command's usage text is its help (--help, and after a usage error).
+void set_usage(CLI::App& app, const char* usage);
 
 }  // namespace panelrad::cli

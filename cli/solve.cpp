@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -51,89 +52,83 @@ void check_prefix(const std::string& prefix) {
                      ", so the outputs would be hidden files such as '" + prefix +
                      ".csv'; give a prefix such as DIR/NAME");
 }
-}  // namespace
 
-int run_solve(int argc, char** argv) {
-  std::string scene_path, prefix, materials, formats = "csv,ply,vtk,png";
-  SceneSolveOptions o;
-  bool quiet = false, levels_given = false, max_given = false, manual = false;
-  int threads = 0;
-  std::set<std::string> wanted;
-  bool out_given = false;  // --out PREFIX
-  try {
-    for (int i = 1; i < argc; ++i) {
-      const std::string a = argv[i];
-      if (a == "-h" || a == "--help") {
-        std::cout << kSolveUsage;
-        return 0;
-      }
-      if (a == "--quiet") {
-        quiet = true;
-        continue;
-      }
-      if (a.rfind("--", 0) != 0) {
-        if (!scene_path.empty()) throw UsageError("more than one scene given ('" + scene_path + "', '" + a + "')");
-        scene_path = a;
-        continue;
-      }
-      if (i + 1 >= argc) throw UsageError("option '" + a + "' needs a value (or is unknown)");
-      const std::string v = argv[++i];
-      if (a == "--levels") {
-        o.levels = parse_int(a, v, 0, 12);
-        levels_given = true;
-      } else if (a == "--max-elements") {
-        o.max_elements = parse_int(a, v, 1, 1 << 30);
-        max_given = true;
-      } else if (a == "--out") prefix = v, out_given = true;
-      else if (a == "--materials") materials = v;
-      else if (a == "--formats") formats = v;
-      else if (a == "--method") {
-        if (v != "auto" && v != "dense" && v != "fast") throw UsageError("--method must be auto, dense or fast, got '" + v + "'");
-        o.method = v;
-      } else if (a == "--eta") {
-        o.manual.eta = parse_double(a, v, 1e-3, 0.99);
-        manual = true;
-      } else if (a == "--degree") {
-        o.manual.degree = parse_int(a, v, 0, 12);
-        manual = true;
-      } else if (a == "--near") {
-        if (v != "exact" && v != "quadrature") throw UsageError("--near must be exact or quadrature, got '" + v + "'");
-        o.manual.near.rule = parse_near_rule(v);
-        manual = true;
-      } else if (a == "--mu") {
-        o.manual.near.mu = parse_int(a, v, 0, 6);
-        manual = true;
-      } else if (a == "--solver") {
-        if (v != "auto" && v != "neumann" && v != "gmres")
-          throw UsageError("--solver must be auto, neumann or gmres, got '" + v + "'");
-        o.solver = parse_solver(v);
-      } else if (a == "--tol") o.tolerance = v == "auto" ? 0.0 : parse_double(a, v, 1e-15, 0.5);
-      else if (a == "--threads") threads = parse_threads(a, v);
-      else throw UsageError("unknown option '" + a + "'");
-    }
-    if (scene_path.empty()) throw UsageError("no scene given");
-    if (levels_given && max_given) throw UsageError("give --levels or --max-elements, not both");
-    if (manual && o.method == "auto") throw UsageError("--eta, --degree, --near and --mu need --method dense or fast");
-    // --formats: a comma-separated list of at least one format; an empty entry ("", ",", "csv,")
-    // is an error, not "write nothing".
-    for (std::size_t begin = 0;;) {
-      const std::size_t end = std::min(formats.find(',', begin), formats.size());
-      const std::string f = formats.substr(begin, end - begin);
-      if (f != "csv" && f != "ply" && f != "vtk" && f != "png")
-        throw UsageError("--formats '" + formats + "': " +
-                         (f.empty() ? std::string("an empty entry") : "'" + f + "'") +
-                         " is not csv, ply, vtk or png");
-      wanted.insert(f);
-      if (end == formats.size()) break;
-      begin = end + 1;
-    }
-    if (out_given && prefix.empty()) throw UsageError("--out: the prefix is empty");
-    if (prefix.empty()) prefix = default_prefix(scene_path);
-    check_prefix(prefix);
-  } catch (const UsageError& e) {
-    std::cerr << "panelrad solve: " << e.what() << "\n" << kSolveUsage;
-    return 2;
+/// --formats: a comma-separated list of at least one format; an empty entry ("", ",", "csv,")
+/// is an error, not "write nothing".
+std::string check_formats(const std::string& formats, std::set<std::string>* wanted) {
+  for (std::size_t begin = 0;;) {
+    const std::size_t end = std::min(formats.find(',', begin), formats.size());
+    const std::string f = formats.substr(begin, end - begin);
+    if (f != "csv" && f != "ply" && f != "vtk" && f != "png")
+      return "in '" + formats + "', " + (f.empty() ? std::string("an empty entry") : "'" + f + "'") +
+             " is not csv, ply, vtk or png";
+    if (wanted) wanted->insert(f);
+    if (end == formats.size()) return {};
+    begin = end + 1;
   }
+}
+
+/// What the command line says, in the library's option structs.
+struct SolveCommandLine {
+  std::string scene_path, prefix, materials, formats = "csv,ply,vtk,png";
+  RadiositySolverOptions o;
+  bool quiet = false;
+  int threads = 0;
+  std::set<std::string> wanted;  // from formats
+};
+
+void add_solve_options(CLI::App& app, SolveCommandLine& line) {
+  app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);  // repeated: the last counts
+  RadiositySolverOptions& o = line.o;
+  app.add_option("SCENE", line.scene_path);  // checked after parsing, so an unknown option is said first
+  CLI::Option* levels = app.add_option("--levels", o.level)->type_name("L")->transform(integer_in(0, 12));
+  CLI::Option* max_elements =
+      app.add_option("--max-elements", o.max_elements)->type_name("N")->transform(integer_in(1, 1 << 30));
+  levels->excludes(max_elements);
+  app.add_option("--out", line.prefix)->type_name("PREFIX")->check([](const std::string& prefix) {
+    return prefix.empty() ? std::string("the prefix is empty") : std::string();
+  });
+  app.add_option("--materials", line.materials)->type_name("JSON");
+  app.add_option("--formats", line.formats)->type_name("csv,ply,vtk,png")->check([](const std::string& formats) {
+    return check_formats(formats, nullptr);
+  });
+  app.add_option_function<std::string>("--method", [&o](const std::string& v) { o.method = parse_operator_method(v); })
+      ->type_name("auto|dense|fast")
+      ->check(one_of({"auto", "dense", "fast"}));
+  app.add_option("--eta", o.manual.eta)->type_name("E")->transform(number_in(1e-3, 0.99));
+  app.add_option("--degree", o.manual.degree)->type_name("M")->transform(integer_in(0, 12));
+  app.add_option_function<std::string>("--near",
+                                       [&o](const std::string& v) { o.manual.near.rule = parse_near_rule(v); })
+      ->type_name("exact|quadrature")
+      ->check(one_of({"exact", "quadrature"}));
+  app.add_option("--mu", o.manual.near.mu)->type_name("K")->transform(integer_in(0, 6));
+  app.add_option_function<std::string>("--solver", [&o](const std::string& v) { o.solver.kind = parse_solver(v); })
+      ->type_name("auto|neumann|gmres")
+      ->check(one_of({"auto", "neumann", "gmres"}));
+  app.add_option("--tol", o.solver.tolerance)->type_name("T|auto")->transform(tolerance_in(1e-15, 0.5));
+  app.add_option("--threads", line.threads)->type_name("T")->transform(thread_count());
+  app.add_flag("--quiet", line.quiet);
+}
+
+/// The combinations of options, once the command line is parsed.
+void check_solve_options(const CLI::App& app, SolveCommandLine& line) {
+  if (app.count("SCENE") == 0) throw UsageError("no scene given");
+  const bool manual = app.count("--eta") + app.count("--degree") + app.count("--near") + app.count("--mu") > 0;
+  if (manual && line.o.method == OperatorMethod::automatic)
+    throw UsageError("--eta, --degree, --near and --mu need --method dense or fast");
+  (void)check_formats(line.formats, &line.wanted);  // checked by the option's validator
+  if (line.prefix.empty()) line.prefix = default_prefix(line.scene_path);
+  check_prefix(line.prefix);  // given or derived from SCENE
+}
+
+int run_solve(const CLI::App& app, const SolveCommandLine& command_line) {
+  const std::string& scene_path = command_line.scene_path;
+  const std::string& prefix = command_line.prefix;
+  const std::string& materials = command_line.materials;
+  const std::set<std::string>& wanted = command_line.wanted;
+  const bool quiet = command_line.quiet, max_given = app.count("--max-elements") > 0;
+  RadiositySolverOptions o = command_line.o;
+  const int threads = command_line.threads;
   std::vector<std::string> outputs;  // PREFIX.<format>, in writing order
   for (const char* f : {"csv", "ply", "vtk", "png"})
     if (wanted.count(f)) outputs.push_back(prefix + "." + f);
@@ -142,26 +137,27 @@ int run_solve(int argc, char** argv) {
   set_threads(threads);
   if (!quiet) o.progress = [](const std::string& line) { std::cerr << "panelrad solve: " << line << "\n"; };
 
-  const ChannelScene scene = load_channel_scene(scene_path, materials);  // errors: exit 1 (main)
+  const Scene scene = load_channel_scene(scene_path, materials);  // errors: exit 1 (main)
   if (!quiet)
-    for (const std::string& note : scene.notes) std::cerr << "panelrad solve: note: " << note << "\n";
+    for (const std::string& note : scene.notes()) std::cerr << "panelrad solve: note: " << note << "\n";
   // --max-elements N below n0: no level has n <= N, so level 0 (n = n0) is solved; said even
   // with --quiet, since the run then does not do what was asked.
-  if (o.levels < 0 && static_cast<long long>(scene.mesh.triangles.size()) > o.max_elements)
+  if (o.level < 0 && static_cast<long long>(scene.mesh().triangles.size()) > o.max_elements)
     std::cerr << "panelrad solve: note: " << (max_given ? "--max-elements " : "the default --max-elements ")
-              << o.max_elements << " is below the scene's " << scene.mesh.triangles.size()
-              << " triangles (n0): solving level 0, n = " << scene.mesh.triangles.size() << "\n";
+              << o.max_elements << " is below the scene's " << scene.mesh().triangles.size()
+              << " triangles (n0): solving level 0, n = " << scene.mesh().triangles.size() << "\n";
   // Everything about the outputs that can be checked is checked before a long run, not after it:
   // the channel names as CSV columns, and that each output's directory takes a new file (a
   // uniquely named temporary, removed again) and the output is not a directory.
   try {
-    check_channel_names(scene.channels);
+    check_channel_names(scene.channels());
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(scene_path + ": " + e.what());
   }
   for (const std::string& path : outputs) check_output_path(path);
 
-  const SceneSolution s = solve_channel_scene(scene, o);
+  const SceneSolution s = solve_scene(scene, o);
+  require_converged(s);  // a channel out of iterations: exit 1 with the SolverError's message, no outputs
   // All outputs are written to temporaries first and replace the previous ones only when every
   // one was written: a failure (or SIGINT/SIGTERM) leaves the previous set untouched.
   OutputSet set;
@@ -180,7 +176,7 @@ int run_solve(int argc, char** argv) {
   const std::vector<std::string>& written = outputs;
 
   // Summary.
-  std::printf("scene %s: %d facets, %zu channel%s\n", scene_path.c_str(), static_cast<int>(scene.mesh.num_facets),
+  std::printf("scene %s: %d facets, %zu channel%s\n", scene_path.c_str(), static_cast<int>(scene.mesh().num_facets),
               scene.num_channels(), scene.num_channels() > 1 ? "s" : "");
   std::printf("n = %d (level %d), h/diam = %.3e, %s\n", static_cast<int>(s.n), s.level, s.mesh_size / s.diameter,
               s.method.c_str());
@@ -207,6 +203,19 @@ int run_solve(int argc, char** argv) {
   for (const std::string& w : s.warnings) std::fprintf(stderr, "panelrad solve: warning: %s\n", w.c_str());
   for (const std::string& f : written) std::printf("wrote %s\n", f.c_str());
   return 0;
+}
+
+}  // namespace
+
+Command add_solve(CLI::App& panelrad) {
+  auto line = std::make_shared<SolveCommandLine>();
+  CLI::App* app = panelrad.add_subcommand("solve", "solve an OBJ+MTL or OFF+JSON scene, write CSV/PLY/VTK/PNG");
+  set_usage(*app, kSolveUsage);
+  add_solve_options(*app, *line);
+  return {app, [app, line] {
+            check_solve_options(*app, *line);
+            return run_solve(*app, *line);
+          }};
 }
 
 }  // namespace panelrad::cli

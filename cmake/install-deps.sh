@@ -6,12 +6,13 @@ packages=(
   build-essential cmake pkg-config
   libcgal-dev libgmp-dev libmpfr-dev     # exact predicates and constructions (geometry/)
   libeigen3-dev                          # vectors and dense linear algebra
-  libboost-dev                           # header-only parts used by CGAL
-  libopenmesh-dev                        # OFF/OBJ readers
+  libboost-dev                           # header-only: used by CGAL; Boost.Math Legendre zeros (quadrature/)
+  libopenmesh-dev                        # the tests' second OFF/OBJ reader (geometry/oracles)
   libgtest-dev libgmock-dev              # GoogleTest
   clang libclang-rt-14-dev libomp-dev    # fuzz/: libFuzzer and clang's sanitizer runtimes, clang's OpenMP
   nlohmann-json3-dev                     # JSON sidecar of OFF scenes (panelrad solve)
   libpng-dev                             # PNG picture of a solved scene
+  libcli11-dev                           # command-line option parsing (cli/)
   gnuplot-nox                            # bench/plot_pareto.gp (error-time plot of bench/sweep)
 )
 missing=()

@@ -4,8 +4,8 @@
 // Loads examples/meshes/hexagonal_prism.off (a right prism over a regular hexagon, circumradius 1,
 // height 1) with Scene::load, sets rho = 0.6 on the six sides and 0.3 on the two caps, and
 // manufactures E = u - K u from the known solution u(Q) = 1 + 0.5 x - 0.25 y + 0.75 z^2. It then
-// solves on levels 1, 2, 3 (n = 20 * 4^level) with the automatic parameters (choose_parameters)
-// and prints max_k |u(P_k) - u_n(P_k)| per level and the ratio to the previous level.
+// solves on levels 1, 2, 3 (n = 20 * 4^level), one RadiositySolver per level with the automatic
+// parameters (choose_parameters at the scene's rho_max 0.6, self-checked), and prints max_k |u(P_k) - u_n(P_k)| per level and the ratio to the previous level.
 //   usage: hexagonal_prism [mesh.off [max_level]]
 //     mesh.off   default: the shipped examples/meshes/hexagonal_prism.off (PANELRAD_EXAMPLE_MESHES)
 //     max_level  finest level, >= 2 (default 3)
@@ -20,7 +20,7 @@
 #include <panelrad/operator/collocation.hpp>
 #include <panelrad/operator/operator_factory.hpp>
 #include <panelrad/scene/scene.hpp>
-#include <panelrad/solve/solvers.hpp>
+#include <panelrad/solve/radiosity_solver.hpp>
 
 #include <chrono>
 #include <cmath>
@@ -79,13 +79,13 @@ int main(int argc, char** argv) {
     bool pass = true;
     for (int level = 1; level <= max_level; ++level) {
       const auto start = Clock::now();
-      const Collocation collocation(scene, level);
-      const OperatorOptions options = choose_parameters(problem_size(scene.mesh(), level));
-      const auto K = make_operator(collocation, options);
-      SolverOptions solver;
-      solver.tolerance = discretization_tolerance(collocation.tree().mesh_size(), collocation.tree().diameter());
-      const SolveResult result = solve(*K, collocation.emissivity(), solver, scene.max_reflectivity());
-      const double error = collocation.max_error(result.u);  // max_k |u(P_k) - result.u[k]|
+      RadiositySolverOptions options;  // automatic parameters, tolerance tied to the discretization
+      options.level = level;
+      options.fold_reflectivity = true;
+      const RadiositySolver solver(scene, options);
+      const ChannelSolve result = solver.solve(0);
+      if (!result.converged()) throw SolverError(result.message);
+      const double error = solver.collocation().max_error(result.u);  // max_k |u(P_k) - result.u[k]|
       const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
       char ratio[32] = "";
       if (!errors.empty()) {
@@ -96,8 +96,8 @@ int main(int argc, char** argv) {
         pass = false;
       }
       errors.push_back(error);
-      std::printf("%6d %8d %-40s %11.4e %7s %8.2f\n", level, static_cast<int>(collocation.size()),
-                  describe_parameters(options).c_str(), error, ratio, seconds);
+      std::printf("%6d %8d %-40s %11.4e %7s %8.2f\n", level, static_cast<int>(solver.n()),
+                  describe_parameters(solver.parameters()).c_str(), error, ratio, seconds);
     }
     std::printf("error ratio per level >= 1.6 (O(h) convergence): %s\n", pass ? "PASS" : "FAIL");
     return pass ? 0 : 1;

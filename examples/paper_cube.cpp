@@ -3,16 +3,15 @@
 //
 // The unit cube with rho = 0.5 on y = 0, 1; 0.4 on z = 0, 1; 0.3 on x = 0, 1 and the true solution
 // u = x^2 + y^2 + z^2 (E manufactured as E = u - K u). The example discretizes it with centroid
-// collocation at one level, picks the operator with the automatic rule (choose_parameters: dense up
-// to n = 768, the fast method above), solves to a tolerance tied to the discretization error and
-// compares max_k |u(P_k) - u_n(P_k)| with the paper's value.
+// collocation at one level with one RadiositySolver, which picks the operator with the automatic
+// rule (choose_parameters: dense up to n = 768, the fast method above, self-checked), solves to a
+// tolerance tied to the discretization error; the example compares max_k |u(P_k) - u_n(P_k)|
+// with the paper's value.
 //   usage: paper_cube [level]   (default 3: n = 12 * 4^3 = 768; levels 0..5 have a paper value)
 // Exit status 0 when the error is within 2% of Table 1, 1 otherwise (or on an error).
 #include <panelrad/operator/auto_parameters.hpp>
-#include <panelrad/operator/collocation.hpp>
-#include <panelrad/operator/operator_factory.hpp>
 #include <panelrad/scene/scene.hpp>
-#include <panelrad/solve/solvers.hpp>
+#include <panelrad/solve/radiosity_solver.hpp>
 
 #include <chrono>
 #include <cmath>
@@ -35,30 +34,28 @@ int main(int argc, char** argv) {
     const auto start = Clock::now();
     // 1. The scene: the paper's cube with rho per facet and E manufactured from the true u.
     const Scene scene = make_paper_cube_scene();
-    // 2. Discretize: the level-`level` refinement, collocation at the centroids (22); rho, E and
-    //    the true u are evaluated at the centroids here.
-    const Collocation collocation(scene, level);
-    const double h = collocation.tree().mesh_size(), diam = collocation.tree().diameter();
-    // 3. The operator K_n (33): the automatic rule picks dense or fast and its parameters.
-    const OperatorOptions options = choose_parameters(problem_size(scene.mesh(), level));
-    const auto setup_start = Clock::now();
-    const auto K = make_operator(collocation, options);
-    const double setup_s = std::chrono::duration<double>(Clock::now() - setup_start).count();
-    // 4. Solve (I - K_n) u_n = E_n (32), iterating until the iteration error is far below the
-    //    O(h) discretization error.
-    SolverOptions solver;
-    solver.tolerance = discretization_tolerance(h, diam);
-    const SolveResult result = solve(*K, collocation.emissivity(), solver, scene.max_reflectivity());
-    // 5. Read the solution: result.u[i] is u_n at collocation.collocation_point(i).
+    // 2. The solver object: the level-`level` refinement with collocation at the centroids (22)
+    //    (rho, E and the true u evaluated there), the operator K_n (33) with rho in its rows, its
+    //    parameters by the automatic rule, and a tolerance tied to the O(h) discretization error.
+    RadiositySolverOptions options;
+    options.level = level;
+    options.fold_reflectivity = true;
+    const RadiositySolver solver(scene, options);
+    const Collocation& collocation = solver.collocation();
+    const double h = solver.info().mesh_size, diam = solver.info().diameter;
+    const double setup_s = solver.info().operator_s;
+    // 3. Solve (I - K_n) u_n = E_n (32); result.u[i] is u_n at collocation.collocation_point(i).
+    const ChannelSolve result = solver.solve(0);
+    if (!result.converged()) throw SolverError(result.message);
     const double error = collocation.max_error(result.u);
     const double total_s = std::chrono::duration<double>(Clock::now() - start).count();
 
     std::printf("paper cube, level %d: n = %d, h/diam = %.4f\n", level, static_cast<int>(collocation.size()),
                 h / diam);
-    std::printf("operator: %s (setup %.2f s, %.1f MB)\n", describe_parameters(options).c_str(), setup_s,
-                static_cast<double>(K->bytes()) / 1e6);
+    std::printf("operator: %s (setup %.2f s, %.1f MB)\n", describe_parameters(solver.parameters()).c_str(),
+                setup_s, static_cast<double>(solver.operator_bytes()) / 1e6);
     std::printf("solver: %s, %d products, Neumann ratio %.4f, %.2f s\n",
-                result.choice.empty() ? result.solver.c_str() : result.choice.c_str(), result.iterations,
+                result.solver.c_str(), result.iterations,
                 result.convergence_ratio, result.seconds);
     std::printf("max_k |u(P_k) - u_n(P_k)| = %.4e   (total %.2f s, E manufacturing %.2f s of it)\n", error,
                 total_s, collocation.emissivity_seconds());

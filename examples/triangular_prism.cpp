@@ -1,4 +1,4 @@
-// panelrad example: a colour (multi-channel) scene built in code, solved with solve_channel_scene,
+// panelrad example: a colour (multi-channel) scene built in code, solved with solve_scene,
 // written with the output API (CSV, PLY, VTK, PNG), with a known answer.
 //
 // A triangular prism (circumradius 1, height 2) with a different reflectivity on every facet in
@@ -33,34 +33,32 @@ int main(int argc, char** argv) {
   try {
     // 1. Geometry: a built-in prism over a triangle (or geometry::read_mesh("my.off")), validated
     //    exactly (closed, convex, non-degenerate) and oriented outward.
-    ChannelScene scene;
-    scene.mesh = geometry::make_prism(3, /*circumradius=*/1.0, /*height=*/2.0);
-    const geometry::ValidationReport report = geometry::validate_closed_convex(scene.mesh);
+    geometry::TriangleMesh mesh = geometry::make_prism(3, /*circumradius=*/1.0, /*height=*/2.0);
+    const geometry::ValidationReport report = geometry::validate_closed_convex(mesh);
     if (!report.valid) {
       std::fprintf(stderr, "invalid mesh: %s\n", report.message.c_str());
       return 1;
     }
     // 2. Per-facet data in each channel. Prism facets: the 3 sides, then bottom and top caps.
-    scene.channels = {"R", "G", "B"};
-    scene.rho = {
+    Scene scene(std::move(mesh), {"R", "G", "B"});
+    const std::vector<std::vector<double>> rho = {
         {0.80, 0.60, 0.40, 0.20, 0.85},  // R
         {0.10, 0.50, 0.70, 0.30, 0.00},  // G
         {0.45, 0.25, 0.65, 0.85, 0.55},  // B
     };
     const std::vector<double> c = {1.0, 0.5, 2.0};  // the exact radiosity per channel
-    scene.emission.resize(scene.num_channels());
     for (std::size_t ch = 0; ch < scene.num_channels(); ++ch) {
-      if (scene.rho[ch].size() != static_cast<std::size_t>(scene.mesh.num_facets)) {
-        std::fprintf(stderr, "expected %d facets\n", static_cast<int>(scene.mesh.num_facets));
-        return 1;
-      }
-      for (double r : scene.rho[ch]) scene.emission[ch].push_back(c[ch] * (1 - r));
+      std::vector<double> emission;
+      for (double r : rho[ch]) emission.push_back(c[ch] * (1 - r));
+      scene.set_reflectivity(rho[ch], ch);  // one value per facet, checked (0 <= rho < 1)
+      scene.set_emissivity(emission, ch);
     }
     // 3. Solve: subdivision, one operator for all channels (automatic method), each channel solved
     //    to a tolerance tied to the discretization error, and the energy balance checked.
-    SceneSolveOptions options;
-    options.levels = level;
-    const SceneSolution solution = solve_channel_scene(scene, options);
+    RadiositySolverOptions options;
+    options.level = level;
+    const SceneSolution solution = solve_scene(scene, options);
+    require_converged(solution);
     std::printf("triangular prism, level %d: n = %d, %s\n", solution.level, static_cast<int>(solution.n),
                 solution.method.c_str());
     std::printf("times: subdivision %.3f s, operator %.3f s, solve %.3f s, total %.3f s\n", solution.subdivision_s,

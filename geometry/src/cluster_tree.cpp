@@ -9,6 +9,11 @@
 // Epeck circumcenter + squared_distance forced exact costs about 40 us per triangle (10 s for the
 // 262k clusters of the cube's level 7); the Mpzf evaluation is more than ten times cheaper.
 #include <panelrad/geometry/cluster_tree.hpp>
+#include <panelrad/geometry/byte_size.hpp>
+#include <panelrad/geometry/parallel_for.hpp>
+#include <panelrad/geometry/subdivision.hpp>
+
+#include <panelrad/geometry/bounding_box.hpp>
 
 #include <CGAL/Gmpq.h>
 #include <CGAL/Mpzf.h>
@@ -19,8 +24,8 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <exception>
 #include <limits>
+#include <ranges>
 #include <sstream>
 #include <string>
 
@@ -141,16 +146,6 @@ std::string describe(const Vec3& v) {
   return s.str();
 }
 
-std::string format_size(double bytes) {
-  std::ostringstream s;
-  s.precision(3);
-  if (bytes >= 1e9)
-    s << bytes / 1e9 << " GB";
-  else
-    s << bytes / 1e6 << " MB";
-  return s.str();
-}
-
 /// Circumcircle centre A and radius R (41) of the triangle (a, b, c), exact and rounded once.
 /// With u = b - a, v = c - a, w = u x v: A = a + N / D, N = (|u|^2 v - |v|^2 u) x w, D = 2 |w|^2,
 /// R = |N| / D. Throws MeshError (naming `where`) when the corners are collinear.
@@ -180,8 +175,6 @@ void circumcircle(const Vec3& a, const Vec3& b, const Vec3& c, Vec3& centre, dou
   }
 }
 
-Vec3 midpoint(const Vec3& p, const Vec3& q) { return (p + q) * 0.5; }  // symmetric in p, q
-
 /// v scaled by the power of two 2^-e that brings its largest component into [1, 2) (exact), so
 /// that norms neither overflow nor underflow; e is returned. v must be non-zero and finite.
 Vec3 scaled_to_unit_range(const Vec3& v, int& e) {
@@ -195,27 +188,6 @@ double length(const Vec3& v) {
   int e = 0;
   const Vec3 s = scaled_to_unit_range(v, e);
   return std::ldexp(s.norm(), e);
-}
-
-/// Runs body(k) for k in [0, count) in parallel; rethrows the exception of the lowest failing k
-/// (deterministic whatever the thread count).
-template <class Body>
-void parallel_for(Index count, Body&& body) {
-  std::exception_ptr failure;
-  Index failed = count;
-#pragma omp parallel for schedule(dynamic, 256)
-  for (Index k = 0; k < count; ++k) {
-    try {
-      body(k);
-    } catch (...) {
-#pragma omp critical(panelrad_cluster_tree_failure)
-      if (k < failed) {
-        failed = k;
-        failure = std::current_exception();
-      }
-    }
-  }
-  if (failure) std::rethrow_exception(failure);
 }
 
 constexpr int max_level = 15;  // n0 * 4^16 > 2^31 - 1 for every n0 >= 1
@@ -278,8 +250,8 @@ ClusterTree::ClusterTree(const TriangleMesh& mesh, int finest_level, std::size_t
   if (estimate > memory_limit_bytes) {
     std::ostringstream msg;
     msg << "cluster tree of " << name << ": level " << finest_level << " (n = " << (static_cast<long long>(n0) << (2 * finest_level))
-        << " elements) needs an estimated " << format_size(static_cast<double>(estimate)) << ", more than the "
-        << format_size(static_cast<double>(memory_limit_bytes)) << " of memory available; choose a lower level";
+        << " elements) needs an estimated " << format_bytes(static_cast<double>(estimate)) << ", more than the "
+        << format_bytes(static_cast<double>(memory_limit_bytes)) << " of memory available; choose a lower level";
     throw MeshError(msg.str());
   }
   for (Index k = 0; k < n0; ++k) {
@@ -334,9 +306,7 @@ ClusterTree::ClusterTree(const TriangleMesh& mesh, int finest_level, std::size_t
     const std::string where = "level " + std::to_string(l + 1);
     parallel_for(static_cast<Index>(parents.size()), [&](Index k) {
       const Cluster& p = parents[static_cast<std::size_t>(k)];
-      const Vec3 &a = p.vertex[0], &b = p.vertex[1], &c = p.vertex[2];
-      const Vec3 ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
-      const std::array<std::array<Vec3, 3>, 4> corners{{{a, ab, ca}, {ab, b, bc}, {ca, bc, c}, {ab, bc, ca}}};
+      const std::array<std::array<Vec3, 3>, 4> corners = midpoint_subdivision(p.vertex[0], p.vertex[1], p.vertex[2]);
       for (std::size_t j = 0; j < 4; ++j) {
         const Index id = 4 * k + static_cast<Index>(j);
         Cluster& child = children[static_cast<std::size_t>(id)];
@@ -368,13 +338,7 @@ ClusterTree::ClusterTree(const TriangleMesh& mesh, int finest_level, std::size_t
     h = std::max({h, length(v[1] - v[0]), length(v[2] - v[1]), length(v[0] - v[2])});
   }
   mesh_size_ = h;
-  Vec3 lo = roots[0].vertex[0], hi = lo;
-  for (const Cluster& c : roots)
-    for (const Vec3& v : c.vertex) {
-      lo = lo.cwiseMin(v);
-      hi = hi.cwiseMax(v);
-    }
-  diameter_ = length(hi - lo);
+  diameter_ = bounding_box_diameter(roots | std::views::transform(&Cluster::vertex) | std::views::join);
 }
 
 }  // namespace panelrad::geometry

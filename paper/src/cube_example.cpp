@@ -28,102 +28,70 @@ std::vector<LevelMemoryEstimate> check_paper_cube_fits(const CubeRunOptions& opt
 }
 
 namespace {
-// Where a run of the levels is, so that an allocation failure can name it.
-enum class CubeStage { tree, op, solve };
-struct CubeRunPosition {
-  int level = 0;
-  CubeStage stage = CubeStage::tree;
-};
 
-std::vector<CubeRow> solve_levels(const CubeRunOptions& options, const std::function<void(const CubeRow&)>& on_row,
-                                  CubeRunPosition& at);
+RadiositySolverOptions level_options(const CubeRunOptions& options, int level) {
+  RadiositySolverOptions o;
+  o.level = level;
+  o.method = options.op.method;
+  o.manual = options.op;
+  o.tighten_on_failed_check = options.tighten_on_failed_check;
+  o.solver = options.solver;  // tolerance <= 0: discretization_tolerance, per level
+  o.fold_reflectivity = true;  // K_n with rho (31) in its rows, as in the paper's tables
+  return o;
+}
+
+// One line of the tables: the level's setup and solve, and the error (51) against u = |x|^2.
+CubeRow cube_row(const RadiositySolver& solver, const ChannelSolve& result) {
+  const RadiositySolverInfo& info = solver.info();
+  const OperatorOptions& op = info.parameters;
+  CubeRow row;
+  row.method = to_string(op.method);
+  row.near = to_string(op.near.rule);
+  row.mu = op.near.mu;
+  if (op.method == OperatorMethod::fast) {
+    row.eta = op.eta;
+    row.degree = op.degree;
+  }
+  row.tightened = info.tightened;
+  row.n = info.n;
+  row.emissivity_s = solver.collocation().emissivity_seconds();
+  row.setup_s = solver.collocation().tree_seconds() + info.operator_s;
+  row.operator_mb = static_cast<double>(info.operator_bytes) / (1024.0 * 1024.0);
+  if (const auto* fast = dynamic_cast<const FastOperator*>(&solver.op())) {
+    const FastStatistics& s = fast->statistics();
+    row.near_pairs = s.near_pairs;
+    row.far_pairs = s.far_pairs;
+    row.skipped_coplanar = s.skipped_coplanar;
+    row.far_stored = s.far_stored;
+    row.checked_product_error = info.self_check->relative_error;
+  }
+  row.solver = result.solver;
+  row.solve_s = result.seconds;
+  row.iterations = result.iterations;
+  row.per_product_s = result.iterations > 0 ? result.seconds / result.iterations : 0;
+  row.conv_ratio = result.convergence_ratio;
+  row.max_error = solver.collocation().max_error(result.u);
+  return row;
+}
+
 }  // namespace
 
 std::vector<CubeRow> run_paper_cube(const CubeRunOptions& options, const std::function<void(const CubeRow&)>& on_row) {
   // Every level is estimated before level min_level is computed: a size that cannot fit is
   // refused at once, not after the levels below it.
-  const std::vector<LevelMemoryEstimate> estimates = check_paper_cube_fits(options);
-  CubeRunPosition at;
-  try {
-    return solve_levels(options, on_row, at);
-  } catch (const std::bad_alloc&) {
-    const LevelMemoryEstimate& e = estimates[static_cast<std::size_t>(at.level - options.min_level)];
-    const std::string where = "cube level " + std::to_string(at.level) + ": ";
-    switch (at.stage) {
-      case CubeStage::tree:
-        throw ResourceError(where + out_of_memory_message("building the cluster tree (40) and the collocation points (22)",
-                                                          static_cast<double>(e.n), e.tree + e.collocation));
-      case CubeStage::op:
-        throw ResourceError(where + out_of_memory_message("building the operator (" + e.method + ")",
-                                                          static_cast<double>(e.n), e.op));
-      case CubeStage::solve:
-        break;
-    }
-    throw ResourceError(where + out_of_memory_message("solving (32)", static_cast<double>(e.n), e.solver));
-  }
-}
-
-namespace {
-std::vector<CubeRow> solve_levels(const CubeRunOptions& options, const std::function<void(const CubeRow&)>& on_row,
-                                  CubeRunPosition& at) {
+  check_paper_cube_fits(options);
   const Scene scene = make_paper_cube_scene();
   std::vector<CubeRow> rows;
   for (int level = options.min_level; level <= options.max_level; ++level) {
-    at = {level, CubeStage::tree};
     CubeRow row;
-    row.method = options.op.method;
-    row.near = to_string(options.op.near.rule);
-    row.mu = options.op.near.mu;
-    if (options.op.method == "fast") {
-      row.eta = options.op.eta;
-      row.degree = options.op.degree;
+    try {
+      const RadiositySolver solver(scene, level_options(options, level));
+      const ChannelSolve result = solver.solve(0);
+      if (!result.converged()) throw SolverError(result.message);
+      row = cube_row(solver, result);
+    } catch (const ResourceError& e) {
+      throw ResourceError("cube level " + std::to_string(level) + ": " + e.what());
     }
-    const Collocation collocation(scene, level);
-    row.n = collocation.size();
-    row.emissivity_s = collocation.emissivity_seconds();
-    Stopwatch clock;
-    OperatorOptions op = options.op;
-    at.stage = CubeStage::op;
-    auto K = make_operator(collocation, op);
-    double check_error = 0;
-    if (const auto* fast = dynamic_cast<const FastOperator*>(K.get())) {
-      check_error = fast->self_check().relative_error;
-      if (options.tighten_on_failed_check) {
-        const double threshold =
-            self_check_threshold(problem_size(scene.mesh(), level), scene.max_reflectivity());
-        while (check_error > threshold) {
-          const OperatorOptions stricter = tighten_parameters(op);
-          if (describe_parameters(stricter) == describe_parameters(op)) break;  // nothing stricter
-          op = stricter;
-          ++row.tightened;
-          K = make_operator(collocation, op);
-          check_error = dynamic_cast<const FastOperator&>(*K).self_check().relative_error;
-        }
-        row.eta = op.eta;
-        row.degree = op.degree;
-      }
-    }
-    row.setup_s = collocation.tree_seconds() + clock.seconds();
-    row.operator_mb = static_cast<double>(K->bytes()) / (1024.0 * 1024.0);
-    if (const auto* fast = dynamic_cast<const FastOperator*>(K.get())) {
-      const FastStatistics& s = fast->statistics();
-      row.near_pairs = s.near_pairs;
-      row.far_pairs = s.far_pairs;
-      row.skipped_coplanar = s.skipped_coplanar;
-      row.far_stored = s.far_stored;
-      row.checked_product_error = check_error;
-    }
-    SolverOptions solver = options.solver;
-    if (!(solver.tolerance > 0))
-      solver.tolerance = discretization_tolerance(collocation.tree().mesh_size(), collocation.tree().diameter());
-    at.stage = CubeStage::solve;
-    const SolveResult result = solve(*K, collocation.emissivity(), solver, scene.max_reflectivity());
-    row.solver = result.choice.empty() ? result.solver : result.choice;
-    row.solve_s = result.seconds;
-    row.iterations = result.iterations;
-    row.per_product_s = result.iterations > 0 ? result.seconds / result.iterations : 0;
-    row.conv_ratio = result.convergence_ratio;
-    row.max_error = collocation.max_error(result.u);
     if (!rows.empty() && row.max_error > 0) row.error_ratio = rows.back().max_error / row.max_error;
     row.peak_rss_mb = peak_rss_mb();
     rows.push_back(row);
@@ -131,7 +99,6 @@ std::vector<CubeRow> solve_levels(const CubeRunOptions& options, const std::func
   }
   return rows;
 }
-}  // namespace
 
 std::string cube_csv_header() {
   return "method,near,eta,mu,degree,n,max_error,setup_s,solve_s,iterations,conv_ratio,peak_rss_mb";
@@ -161,15 +128,15 @@ void write_cube_csv(const std::vector<CubeRow>& rows, const std::string& path) {
 
 void print_cube_header(std::ostream& os, const CubeRunOptions& o) {
   os << "Cube example (paper (31)): rho 0.5 on y=0,1; 0.4 on z=0,1; 0.3 on x=0,1; u = x^2+y^2+z^2\n"
-     << "method " << o.op.method << ", near field " << to_string(o.op.near.rule);
+     << "method " << to_string(o.op.method) << ", near field " << to_string(o.op.near.rule);
   if (o.op.near.rule == NearRule::quadrature) os << " (mu " << o.op.near.mu << ", " << o.op.near.basic_rule << ")";
-  if (o.op.method == "fast") os << ", eta " << o.op.eta << ", degree M " << o.op.degree;
+  if (o.op.method == OperatorMethod::fast) os << ", eta " << o.op.eta << ", degree M " << o.op.degree;
   os << ", solver " << to_string(o.solver.kind) << ", threads " << max_threads() << "\n";
   char buf[256];
   std::snprintf(buf, sizeof buf, "%8s %11s %6s %9s %9s %9s %6s %8s %9s %9s %9s", "n", "max error", "ratio",
                 "setup s", "E s", "solve s", "iters", "Neumann", "s/product", "op MB", "peak MB");
   os << buf;
-  if (o.op.method == "fast") {
+  if (o.op.method == OperatorMethod::fast) {
     std::snprintf(buf, sizeof buf, " %12s %12s %11s %10s %s", "near pairs", "far pairs", "coplanar", "Kv error", "far field");
     os << buf;
   }

@@ -1,6 +1,8 @@
 #include <panelrad/quadrature/singular_integration.hpp>
 #include <panelrad/quadrature/exact_integrals.hpp>
+#include <panelrad/quadrature/gauss_legendre.hpp>
 #include <panelrad/quadrature/triangle_rules.hpp>
+#include <panelrad/geometry/subdivision.hpp>
 
 #include <algorithm>
 #include <utility>
@@ -125,49 +127,8 @@ Integral1D adaptive_gk15(F&& f, double a, double b, double rel_tol, double abs_t
 }
 
 // ------------------------------------------------------------------------------------------------
-// Gauss-Legendre nodes and weights on [0,1] for 1..kMaxGauss points (Newton on P_n), built once.
-constexpr int kMaxGauss = 32;
-
-struct GaussTable {
-  std::array<std::vector<double>, kMaxGauss + 1> x, w;
-  GaussTable() {
-    for (int n = 1; n <= kMaxGauss; ++n) {
-      auto& xn = x[static_cast<std::size_t>(n)];
-      auto& wn = w[static_cast<std::size_t>(n)];
-      for (int i = 0; i < n; ++i) {
-        double z = std::cos(kPi * (i + 0.75) / (n + 0.5)), p0 = 1, p1 = z, dp = 1;
-        for (int it = 0; it < 100; ++it) {
-          p0 = 1;
-          p1 = z;  // (k+1) P_{k+1} = (2k+1) z P_k - k P_{k-1}
-          for (int k = 1; k < n; ++k) {
-            const double p2 = ((2.0 * k + 1.0) * z * p1 - k * p0) / (k + 1.0);
-            p0 = p1;
-            p1 = p2;
-          }
-          dp = n * (z * p1 - p0) / (z * z - 1.0);
-          const double dz = p1 / dp;
-          z -= dz;
-          if (std::abs(dz) < 1e-16) break;
-        }
-        p0 = 1;
-        p1 = z;
-        for (int k = 1; k < n; ++k) {
-          const double p2 = ((2.0 * k + 1.0) * z * p1 - k * p0) / (k + 1.0);
-          p0 = p1;
-          p1 = p2;
-        }
-        dp = n * (z * p1 - p0) / (z * z - 1.0);
-        xn.push_back(0.5 * (1.0 - z));
-        wn.push_back(1.0 / ((1.0 - z * z) * dp * dp));
-      }
-    }
-  }
-};
-
-const GaussTable& gauss_table() {
-  static const GaussTable table;  // thread-safe initialisation
-  return table;
-}
+// The largest Gauss-Legendre rule of a separated piece (gauss_legendre.hpp).
+constexpr int kMaxGauss = kMaxGaussLegendrePoints;
 
 // ------------------------------------------------------------------------------------------------
 // Separated pieces (dist(P, piece) >= kSeparation * diam(piece)): a collapsed (Duffy)
@@ -207,9 +168,9 @@ class KernelEvaluator {
     else if (dc >= da && dc >= db)
       std::swap(a, c);
     // Q = a + x (b - a) + x t (c - b), dS = x |(b-a) x (c-b)| dx dt, (x, t) in [0,1]^2.
-    const GaussTable& g = gauss_table();
-    const auto& x = g.x[static_cast<std::size_t>(n)];
-    const auto& w = g.w[static_cast<std::size_t>(n)];
+    const GaussLegendreRule& g = gauss_legendre_01(n);
+    const std::vector<double>& x = g.node;
+    const std::vector<double>& w = g.weight;
     const Vec3 ba = b - a, cb = c - b;
     double sum = 0, abs_sum = 0;
     for (int i = 0; i < n; ++i) {
@@ -461,19 +422,11 @@ class HierarchicalIntegrator {
   // Children of a separated piece are separated too (their ratio dist/diam is at least twice
   // the parent's) and keep at least the parent's order, so that refinement always gains.
   void refine(const Piece& e) {
-    const Vec3 ab = 0.5 * (e.a + e.b), bc = 0.5 * (e.b + e.c), ca = 0.5 * (e.c + e.a);
-    separated(e.a, ab, ca, e.order);
-    separated(ab, e.b, bc, e.order);
-    separated(ca, bc, e.c, e.order);
-    separated(ab, bc, ca, e.order);
+    for (const auto& t : geometry::midpoint_subdivision(e.a, e.b, e.c)) separated(t[0], t[1], t[2], e.order);
   }
 
   void split(const Vec3& a, const Vec3& b, const Vec3& c) {
-    const Vec3 ab = 0.5 * (a + b), bc = 0.5 * (b + c), ca = 0.5 * (c + a);
-    classify(a, ab, ca);
-    classify(ab, b, bc);
-    classify(ca, bc, c);
-    classify(ab, bc, ca);
+    for (const auto& t : geometry::midpoint_subdivision(a, b, c)) classify(t[0], t[1], t[2]);
   }
 
   void classify(const Vec3& a, const Vec3& b, const Vec3& c) {

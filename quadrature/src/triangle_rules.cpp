@@ -1,54 +1,21 @@
 #include <panelrad/quadrature/triangle_rules.hpp>
+#include <panelrad/quadrature/gauss_legendre.hpp>
 
 #include <cmath>
 #include <stdexcept>
 #include <string>
-#include <utility>
 #include <vector>
 
 namespace panelrad::quadrature {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
-/// n-point Gauss-Legendre nodes and weights on [0,1] (Newton on P_n from the Chebyshev guess).
-std::pair<std::vector<double>, std::vector<double>> gauss_legendre_01(int n) {
-  std::vector<double> x(static_cast<std::size_t>(n)), w(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) {
-    double z = std::cos(kPi * (i + 0.75) / (n + 0.5));
-    double dp = 1;
-    for (int it = 0; it < 100; ++it) {
-      double p0 = 1, p1 = z;  // P_0, P_1; recurrence (k+1) P_{k+1} = (2k+1) z P_k - k P_{k-1}
-      for (int k = 1; k < n; ++k) {
-        const double p2 = ((2.0 * k + 1.0) * z * p1 - k * p0) / (k + 1.0);
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = n * (z * p1 - p0) / (z * z - 1.0);
-      const double dz = p1 / dp;
-      z -= dz;
-      if (std::abs(dz) < 1e-16) break;
-    }
-    // Recompute the derivative at the converged node for the weight.
-    double p0 = 1, p1 = z;
-    for (int k = 1; k < n; ++k) {
-      const double p2 = ((2.0 * k + 1.0) * z * p1 - k * p0) / (k + 1.0);
-      p0 = p1;
-      p1 = p2;
-    }
-    dp = n * (z * p1 - p0) / (z * z - 1.0);
-    const auto iu = static_cast<std::size_t>(i);
-    x[iu] = 0.5 * (1.0 - z);                          // map [-1,1] -> [0,1]
-    w[iu] = 1.0 / ((1.0 - z * z) * dp * dp);          // = (2/((1-z^2) P'^2)) / 2
-  }
-  return {x, w};
-}
-
 /// Collapsed (Duffy) Gauss-Legendre product rule with n points per direction: (s,t) =
 /// (u, (1-u) v), Jacobian (1-u). Exact for total degree 2n-2 (the u-direction carries the extra
 /// factor 1-u), all weights positive, all points strictly inside.
 TriangleRule collapsed_gauss(int n) {
-  const auto [x, w] = gauss_legendre_01(n);
+  const GaussLegendreRule& gauss = gauss_legendre_01(n);
+  const std::vector<double>& x = gauss.node;
+  const std::vector<double>& w = gauss.weight;
   TriangleRule rule;
   rule.degree = 2 * n - 2;
   rule.name = "degree" + std::to_string(rule.degree);

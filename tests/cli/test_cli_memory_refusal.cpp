@@ -121,7 +121,7 @@ TEST(CliOptions, ThreadsBeyondWhatCanHelpAreAUsageError) {
   for (const std::string& cmd : {std::string("cube --levels 0"), "solve " + kCornell + " --out /nonexistent-dir/x"}) {
     const CliRun r = run(cmd + " --threads 1024");
     EXPECT_EQ(r.status, 2) << r.output;
-    EXPECT_CONTAINS(r.output, "--threads 1024 is more than the");
+    EXPECT_CONTAINS(r.output, "--threads: 1024 is more than the");
     EXPECT_EQ(r.output.find("libgomp"), std::string::npos) << r.output;
   }
   EXPECT_EQ(run("cube --levels 0 --threads 1").status, 0);
@@ -142,8 +142,79 @@ TEST(CliOptions, TolRangeIsShownWithItsRealBounds) {
   for (const std::string& cmd : {std::string("cube"), "solve " + kCornell}) {
     const CliRun r = run(cmd + " --tol 1e-20");
     EXPECT_EQ(r.status, 2) << r.output;
-    EXPECT_CONTAINS(r.output, "--tol needs a number in [1e-15, 0.5], got '1e-20'");
+    EXPECT_CONTAINS(r.output, "--tol: needs a number in [1e-15, 0.5] or auto, got '1e-20'");
   }
+}
+
+// Every bad value is a usage error naming the option and the accepted range or names.
+TEST(CliOptions, BadValuesNameTheOptionAndWhy) {
+  const struct {
+    const char* args;
+    const char* message;
+  } cases[] = {
+      {"cube --levels 99", "--levels: needs an integer in [0, 12], got '99'"},
+      {"cube --levels -1", "--levels: needs an integer in [0, 12], got '-1'"},
+      {"cube --levels 2.5", "--levels: needs an integer in [0, 12], got '2.5'"},
+      // Base 10 as before: CLI11's own integer conversion (base 0) would read 0x1 as 1.
+      {"cube --levels 0x1", "--levels: needs an integer in [0, 12], got '0x1'"},
+      {"cube --eta 2", "--eta: needs a number in [0.001, 0.99], got '2'"},
+      {"cube --eta nan", "--eta: needs a number in [0.001, 0.99], got 'nan'"},
+      {"cube --tol abc", "--tol: needs a number in [1e-15, 0.5] or auto, got 'abc'"},
+      {"cube --threads x", "--threads: needs an integer in [0, 1048576], got 'x'"},
+      {"cube --method sparse", "--method: sparse not in {dense,fast}"},
+      {"cube --levels", "--levels: 1 required L missing"},
+      {"cube --bogus 1", "unknown option '--bogus'"},
+      {"cube 3", "unexpected argument '3'"},
+      {"solve " PANELRAD_SOURCE_DIR "/examples/scenes/cornell_box.obj second.obj",
+       "unexpected argument 'second.obj' after SCENE '" PANELRAD_SOURCE_DIR "/examples/scenes/cornell_box.obj'"},
+      {"solve", "no scene given"},
+      {"solve --bogus", "unknown option '--bogus'"},
+      {"check --builtin cube --builtin octahedron", "--builtin: At Most 1 required but received 2"},
+      {"frobnicate", "panelrad: unknown command 'frobnicate'"},
+  };
+  for (const auto& c : cases) {
+    const CliRun r = run(c.args);
+    EXPECT_EQ(r.status, 2) << c.args << "\n" << r.output;
+    EXPECT_CONTAINS(r.output, c.message);
+    EXPECT_CONTAINS(r.output, "usage: panelrad");
+  }
+}
+
+// --name=value is the same as --name value; of a repeated option the last one counts (as
+// before the options were parsed with CLI11). prism_lamp has n0 = 20: level 1 is n = 80.
+TEST(CliOptions, EqualsFormAndRepeatedOptions) {
+  const std::string lamp = std::string(PANELRAD_SOURCE_DIR) + "/examples/scenes/prism_lamp.off";
+  const std::string prefix = out_prefix();
+  const CliRun equals = run("solve " + lamp + " --levels=1 --formats=csv --out=" + prefix + " --quiet");
+  EXPECT_EQ(equals.status, 0) << equals.output;
+  EXPECT_CONTAINS(equals.output, "n = 80 (level 1)");
+  EXPECT_CONTAINS(equals.output, "wrote " + prefix + ".csv\n");
+  const CliRun repeated = run("solve " + lamp + " --levels 3 --levels 1 --formats csv --out " + prefix + " --quiet");
+  EXPECT_EQ(repeated.status, 0) << repeated.output;
+  EXPECT_CONTAINS(repeated.output, "n = 80 (level 1)");
+  // The first value of a repeated option is checked too.
+  EXPECT_EQ(run("solve " + lamp + " --levels 99 --levels 1 --out " + prefix).status, 2);
+  std::filesystem::remove_all(std::filesystem::path(prefix).parent_path());
+}
+
+// --help (and help COMMAND) print the command's usage on stdout with status 0; --version too.
+TEST(CliOptions, HelpAndVersion) {
+  for (const char* cmd : {"check", "cube", "solve"}) {
+    const CliRun help = panelrad::testing::run_cli(std::string(cmd) + " --help", "2>/dev/null");
+    EXPECT_EQ(help.status, 0) << help.output;
+    EXPECT_EQ(help.output.rfind(std::string("usage: panelrad ") + cmd, 0), 0u) << help.output;
+    EXPECT_EQ(panelrad::testing::run_cli(std::string("help ") + cmd, "2>/dev/null").output, help.output);
+  }
+  const CliRun top = panelrad::testing::run_cli("--help", "2>/dev/null");
+  EXPECT_EQ(top.status, 0);
+  EXPECT_EQ(top.output.rfind("usage: panelrad <command>", 0), 0u) << top.output;
+  const CliRun none = panelrad::testing::run_cli("", "2>&1 >/dev/null");
+  EXPECT_EQ(none.status, 2);
+  EXPECT_EQ(none.output, top.output);  // no command: the usage on stderr
+  const CliRun version = panelrad::testing::run_cli("--version");
+  EXPECT_EQ(version.status, 0);
+  EXPECT_EQ(version.output, panelrad::testing::run_cli("version").output);
+  EXPECT_EQ(version.output.rfind("panelrad ", 0), 0u) << version.output;
 }
 
 TEST(CliOptions, MaxElementsBelowTheCoarseMeshSaysWhatItDid) {

@@ -1,6 +1,7 @@
 // The cluster tree (39)-(40): uniform 4-way midpoint subdivision, element numbering, inner normals,
 // areas, collocation points (22), circumcircles (41), memory refusal, transform invariance.
 #include <panelrad/geometry/builtin_scenes.hpp>
+#include <panelrad/geometry/byte_size.hpp>
 #include <panelrad/geometry/cluster_tree.hpp>
 #include <panelrad/support/resources.hpp>
 
@@ -468,12 +469,11 @@ TEST(ClusterTree, RefusesTreesThatDoNotFitBeforeAllocating) {
   const TriangleMesh cube = local_cube();
   // Level 5 needs about 12 * 4^5 * 216 B = 2.7 MB: refused under a 1 MB limit, estimate shown.
   const std::string msg = error_of([&] { ClusterTree(cube, 5, std::size_t{1} << 20); });
-  std::ostringstream shown;
-  shown.precision(3);
-  shown << static_cast<double>(ClusterTree::estimate_bytes(12, 5)) / 1e6 << " MB";
+  const std::string shown = format_bytes(static_cast<double>(ClusterTree::estimate_bytes(12, 5)));  // "2.7 MB"
   EXPECT_GT(ClusterTree::estimate_bytes(12, 5), std::size_t{2} << 20);
   EXPECT_NE(msg.find("level 5"), std::string::npos) << msg;
-  EXPECT_NE(msg.find(shown.str()), std::string::npos) << msg << " lacks " << shown.str();
+  EXPECT_NE(msg.find("needs an estimated " + shown), std::string::npos) << msg << " lacks " << shown;
+  EXPECT_NE(msg.find("more than the 1.0 MB of memory available"), std::string::npos) << msg;  // 2^20 B
   EXPECT_NO_THROW(ClusterTree(cube, 5, std::size_t{4} << 20));
   // Against the machine's memory: level 13 (n = 805,306,368) needs ~174 GB.
   const std::size_t estimate = ClusterTree::estimate_bytes(12, 13);

@@ -1,5 +1,6 @@
 // Mesh input: OFF and OBJ readers, their error messages, and robustness against garbage.
 #include <panelrad/geometry/mesh_io.hpp>
+#include <panelrad/geometry/oracles/openmesh_reader.hpp>
 #include <panelrad/geometry/validation.hpp>
 
 #include <gtest/gtest.h>

@@ -15,7 +15,7 @@
 #include <unistd.h>
 
 namespace fs = std::filesystem;
-using panelrad::ChannelScene;
+using panelrad::Scene;
 using panelrad::load_channel_scene;
 using panelrad::SceneFileError;
 
@@ -75,13 +75,13 @@ std::string error_of(const std::string& path, const std::string& materials = "")
 }
 
 /// Does every triangle of `facet` lie in the plane coordinate[axis] == value?
-bool facet_on_plane(const ChannelScene& s, int facet, int axis, double value) {
+bool facet_on_plane(const Scene& s, int facet, int axis, double value) {
   int triangles = 0;
-  for (std::size_t t = 0; t < s.mesh.triangles.size(); ++t) {
-    if (s.mesh.facet_of_triangle[t] != facet) continue;
+  for (std::size_t t = 0; t < s.mesh().triangles.size(); ++t) {
+    if (s.mesh().facet_of_triangle[t] != facet) continue;
     ++triangles;
-    for (auto v : s.mesh.triangles[t])
-      if (s.mesh.vertices[static_cast<std::size_t>(v)][axis] != value) return false;
+    for (auto v : s.mesh().triangles[t])
+      if (s.mesh().vertices[static_cast<std::size_t>(v)][axis] != value) return false;
   }
   return triangles > 0;
 }
@@ -102,32 +102,32 @@ TEST_F(SceneFile, ObjMtlCubeHasPerFacetMaterials) {
                                     "usemtl green\nf 2 3 7 6\n"
                                     "usemtl white\nf 3 4 8 7\n"
                                     "usemtl red\nf 4 1 5 8\n");
-  const ChannelScene s = load_channel_scene(obj);
-  ASSERT_EQ(s.mesh.num_facets, 6);
+  const Scene s = load_channel_scene(obj);
+  ASSERT_EQ(s.mesh().num_facets, 6);
   ASSERT_EQ(s.num_channels(), 3u);
-  EXPECT_EQ(s.channels, (std::vector<std::string>{"R", "G", "B"}));
-  EXPECT_EQ(s.facet_material,
+  EXPECT_EQ(s.channels(), (std::vector<std::string>{"R", "G", "B"}));
+  EXPECT_EQ(s.facet_material(),
             (std::vector<std::string>{"white", "light", "white", "green", "white", "red"}));
-  ASSERT_EQ(s.rho.size(), 3u);
-  ASSERT_EQ(s.emission.size(), 3u);
+  ASSERT_EQ(s.num_channels(), 3u);
+  ASSERT_EQ(s.channels().size(), 3u);
   const double red[3] = {0.6, 0.05, 0.04};
   const double green[3] = {0.1, 0.45, 0.09};
   const double light_e[3] = {4, 3, 1.5};
   for (int c = 0; c < 3; ++c) {
-    ASSERT_EQ(s.rho[c].size(), 6u);
-    EXPECT_EQ(s.rho[c][0], 0.7);
-    EXPECT_EQ(s.rho[c][1], 0.5);
-    EXPECT_EQ(s.rho[c][3], green[c]);
-    EXPECT_EQ(s.rho[c][5], red[c]);
-    EXPECT_EQ(s.emission[c][1], light_e[c]);
-    for (int f : {0, 2, 3, 4, 5}) EXPECT_EQ(s.emission[c][f], 0.0) << "facet " << f;
+    ASSERT_EQ(s.facet_reflectivity(c).size(), 6u);
+    EXPECT_EQ(s.facet_reflectivity(c)[0], 0.7);
+    EXPECT_EQ(s.facet_reflectivity(c)[1], 0.5);
+    EXPECT_EQ(s.facet_reflectivity(c)[3], green[c]);
+    EXPECT_EQ(s.facet_reflectivity(c)[5], red[c]);
+    EXPECT_EQ(s.facet_emissivity(c)[1], light_e[c]);
+    for (int f : {0, 2, 3, 4, 5}) EXPECT_EQ(s.facet_emissivity(c)[f], 0.0) << "facet " << f;
   }
   // Facet ids survive validation: the green facet is still the face x = 1, the red one x = 0.
   EXPECT_TRUE(facet_on_plane(s, 3, 0, 1.0));
   EXPECT_TRUE(facet_on_plane(s, 5, 0, 0.0));
   EXPECT_TRUE(facet_on_plane(s, 1, 2, 1.0));
   bool noted = false;
-  for (const auto& n : s.notes) noted = noted || n.find("materials: 5 from cube.mtl") != std::string::npos;
+  for (const auto& n : s.notes()) noted = noted || n.find("materials: 5 from cube.mtl") != std::string::npos;
   EXPECT_TRUE(noted);
 }
 
@@ -136,12 +136,12 @@ TEST_F(SceneFile, ObjSeveralMtlLibrariesAndUppercaseExtension) {
   write("b.mtl", "newmtl lamp\nKd 0.1 0.2 0.3\nKe 1 2 3\n");
   std::string text = "mtllib a.mtl b.mtl\n" + kCubeVertices;
   for (int f = 0; f < 6; ++f) text += std::string(f == 4 ? "usemtl lamp\n" : "usemtl wall\n") + kCubeFaces[f] + "\n";
-  const ChannelScene s = load_channel_scene(write("CUBE.OBJ", text));
-  EXPECT_EQ(s.facet_material[4], "lamp");
-  EXPECT_EQ(s.rho[2][0], 0.75);
-  EXPECT_EQ(s.rho[1][4], 0.2);
-  EXPECT_EQ(s.emission[2][4], 3.0);
-  EXPECT_EQ(s.emission[2][5], 0.0);
+  const Scene s = load_channel_scene(write("CUBE.OBJ", text));
+  EXPECT_EQ(s.facet_material()[4], "lamp");
+  EXPECT_EQ(s.facet_reflectivity(2)[0], 0.75);
+  EXPECT_EQ(s.facet_reflectivity(1)[4], 0.2);
+  EXPECT_EQ(s.facet_emissivity(2)[4], 3.0);
+  EXPECT_EQ(s.facet_emissivity(2)[5], 0.0);
 }
 
 TEST_F(SceneFile, OffJsonDefaultsIdsAndChannelArrays) {
@@ -151,23 +151,23 @@ TEST_F(SceneFile, OffJsonDefaultsIdsAndChannelArrays) {
     "facets": [ { "id": 1, "rho": 0.7, "E": [1, 0.9, 0.8] },
                 { "ids": [2, 4], "rho": [0.2, 0.6, 0.1] },
                 { "id": 5, "E": 2 } ] })");
-  const ChannelScene s = load_channel_scene(off);
+  const Scene s = load_channel_scene(off);
   ASSERT_EQ(s.num_channels(), 3u);
-  EXPECT_EQ(s.channels, (std::vector<std::string>{"R", "G", "B"}));
-  EXPECT_EQ(s.facet_material, std::vector<std::string>(6, ""));
+  EXPECT_EQ(s.channels(), (std::vector<std::string>{"R", "G", "B"}));
+  EXPECT_EQ(s.facet_material(), std::vector<std::string>(6, ""));
   const double e1[3] = {1, 0.9, 0.8};
   const double rho24[3] = {0.2, 0.6, 0.1};
   for (int c = 0; c < 3; ++c) {
-    EXPECT_EQ(s.rho[c][0], 0.5);  // default
-    EXPECT_EQ(s.emission[c][0], 0.0);
-    EXPECT_EQ(s.rho[c][1], 0.7);  // scalar for all channels
-    EXPECT_EQ(s.emission[c][1], e1[c]);
-    EXPECT_EQ(s.rho[c][2], rho24[c]);
-    EXPECT_EQ(s.rho[c][4], rho24[c]);
-    EXPECT_EQ(s.emission[c][4], 0.0);  // E from the default
-    EXPECT_EQ(s.rho[c][3], 0.5);
-    EXPECT_EQ(s.rho[c][5], 0.5);  // rho from the default, E given
-    EXPECT_EQ(s.emission[c][5], 2.0);
+    EXPECT_EQ(s.facet_reflectivity(c)[0], 0.5);  // default
+    EXPECT_EQ(s.facet_emissivity(c)[0], 0.0);
+    EXPECT_EQ(s.facet_reflectivity(c)[1], 0.7);  // scalar for all channels
+    EXPECT_EQ(s.facet_emissivity(c)[1], e1[c]);
+    EXPECT_EQ(s.facet_reflectivity(c)[2], rho24[c]);
+    EXPECT_EQ(s.facet_reflectivity(c)[4], rho24[c]);
+    EXPECT_EQ(s.facet_emissivity(c)[4], 0.0);  // E from the default
+    EXPECT_EQ(s.facet_reflectivity(c)[3], 0.5);
+    EXPECT_EQ(s.facet_reflectivity(c)[5], 0.5);  // rho from the default, E given
+    EXPECT_EQ(s.facet_emissivity(c)[5], 2.0);
   }
 }
 
@@ -178,50 +178,50 @@ TEST_F(SceneFile, OffJsonOneChannelByDefaultAndExplicitSidecar) {
     facets += std::string(f ? "," : "") + R"({"id": )" + std::to_string(f) + R"(, "rho": 0.)" +
               std::to_string(f + 1) + R"(, "E": )" + std::to_string(f) + "}";
   const std::string json = write("data.json", R"({"facets": [)" + facets + "]}");
-  const ChannelScene s = load_channel_scene((dir_ / "cube.off").string(), json);
-  EXPECT_EQ(s.channels, (std::vector<std::string>{"value"}));
+  const Scene s = load_channel_scene((dir_ / "cube.off").string(), json);
+  EXPECT_EQ(s.channels(), (std::vector<std::string>{"value"}));
   for (int f = 0; f < 6; ++f) {
-    EXPECT_DOUBLE_EQ(s.rho[0][f], 0.1 * (f + 1));
-    EXPECT_EQ(s.emission[0][f], f);
+    EXPECT_DOUBLE_EQ(s.facet_reflectivity(0)[f], 0.1 * (f + 1));
+    EXPECT_EQ(s.facet_emissivity(0)[f], f);
   }
 }
 
 TEST_F(SceneFile, ShippedCornellBoxLoads) {
-  const ChannelScene s = load_channel_scene(kScenes + "cornell_box.obj");
+  const Scene s = load_channel_scene(kScenes + "cornell_box.obj");
   ASSERT_EQ(s.num_channels(), 3u);
-  ASSERT_EQ(s.mesh.num_facets, 14);
+  ASSERT_EQ(s.mesh().num_facets, 14);
   int lights = 0;
   for (int f = 0; f < 14; ++f) {
-    const bool light = s.emission[0][f] > 0;
+    const bool light = s.facet_emissivity(0)[f] > 0;
     lights += light;
     if (light) {
-      EXPECT_EQ(s.facet_material[f], "light");
-      EXPECT_EQ(s.emission[0][f], 17.0);
-      EXPECT_EQ(s.emission[1][f], 12.0);
-      EXPECT_EQ(s.emission[2][f], 4.0);
+      EXPECT_EQ(s.facet_material()[f], "light");
+      EXPECT_EQ(s.facet_emissivity(0)[f], 17.0);
+      EXPECT_EQ(s.facet_emissivity(1)[f], 12.0);
+      EXPECT_EQ(s.facet_emissivity(2)[f], 4.0);
     }
   }
   EXPECT_EQ(lights, 1);
   // The red wall is x = 0, the green one x = 1.
   for (int f = 0; f < 14; ++f) {
-    if (s.facet_material[f] == "red") {
+    if (s.facet_material()[f] == "red") {
       EXPECT_TRUE(facet_on_plane(s, f, 0, 0.0)) << "facet " << f;
-    } else if (s.facet_material[f] == "green") {
+    } else if (s.facet_material()[f] == "green") {
       EXPECT_TRUE(facet_on_plane(s, f, 0, 1.0)) << "facet " << f;
-    } else if (s.facet_material[f] == "light") {
+    } else if (s.facet_material()[f] == "light") {
       EXPECT_TRUE(facet_on_plane(s, f, 2, 1.0)) << "facet " << f;
     }
   }
-  EXPECT_EQ(s.rho[0][13], 0.63);  // the last face is the red left wall
+  EXPECT_EQ(s.facet_reflectivity(0)[13], 0.63);  // the last face is the red left wall
 }
 
 TEST_F(SceneFile, ShippedPrismLampLoads) {
-  const ChannelScene s = load_channel_scene(kScenes + "prism_lamp.off");
+  const Scene s = load_channel_scene(kScenes + "prism_lamp.off");
   ASSERT_EQ(s.num_channels(), 1u);
-  ASSERT_EQ(s.mesh.num_facets, 8);
+  ASSERT_EQ(s.mesh().num_facets, 8);
   for (int f = 0; f < 8; ++f) {
-    EXPECT_EQ(s.rho[0][f], f >= 6 ? 0.3 : 0.6) << "facet " << f;
-    EXPECT_EQ(s.emission[0][f], f == 0 ? 1.0 : 0.0) << "facet " << f;
+    EXPECT_EQ(s.facet_reflectivity(0)[f], f >= 6 ? 0.3 : 0.6) << "facet " << f;
+    EXPECT_EQ(s.facet_emissivity(0)[f], f == 0 ? 1.0 : 0.0) << "facet " << f;
   }
 }
 
@@ -319,8 +319,8 @@ TEST_F(SceneFile, MaterialWithoutKdIsRejected) {
 
 TEST_F(SceneFile, UnusedBadMaterialIsFine) {
   write("cube.mtl", "newmtl white\nKd 0.7 0.7 0.7\nnewmtl mirror\nKd 1 1 1\nnewmtl nokd\nKs 1 1 1\n");
-  const ChannelScene s = load_channel_scene(cube_obj({"white", "", "", "", "", ""}));
-  EXPECT_EQ(s.rho[1][5], 0.7);
+  const Scene s = load_channel_scene(cube_obj({"white", "", "", "", "", ""}));
+  EXPECT_EQ(s.facet_reflectivity(1)[5], 0.7);
 }
 
 TEST_F(SceneFile, MissingMtlIsRejected) {
@@ -510,7 +510,7 @@ TEST_F(SceneFile, SizeLimitAppliesToMeshMtlAndJson) {
     EXPECT_CONTAINS(e.what(), "cube.off: cannot read: the file is ");
   }
   limit.max_bytes = fs::file_size(off);  // the OFF fits, the JSON is smaller: both read
-  EXPECT_EQ(load_channel_scene(off, "", limit).mesh.num_facets, 6);
+  EXPECT_EQ(load_channel_scene(off, "", limit).mesh().num_facets, 6);
   write("cube.json", R"({"default": {"rho": 0.5, "E": 0}, "facets": [)" + std::string(300, ' ') + "]}");
   try {
     load_channel_scene(off, "", limit);
@@ -525,12 +525,12 @@ TEST_F(SceneFile, ByteOrderMarkIsAcceptedInObjMtlOffAndJson) {
   write("cube.mtl", bom + "newmtl white\nKd 0.7 0.6 0.5\n");
   std::string text = bom + "mtllib cube.mtl\n" + kCubeVertices;
   for (int f = 0; f < 6; ++f) text += std::string("usemtl white\n") + kCubeFaces[f] + "\n";
-  const ChannelScene s = load_channel_scene(write("cube.obj", text));
-  EXPECT_EQ(s.rho[1][3], 0.6);
+  const Scene s = load_channel_scene(write("cube.obj", text));
+  EXPECT_EQ(s.facet_reflectivity(1)[3], 0.6);
   write("cube.json", bom + R"({"default": {"rho": 0.25, "E": 1}})");
-  const ChannelScene t = load_channel_scene(write("cube.off", bom + kCubeOff));
-  EXPECT_EQ(t.rho[0][5], 0.25);
-  EXPECT_EQ(t.emission[0][0], 1.0);
+  const Scene t = load_channel_scene(write("cube.off", bom + kCubeOff));
+  EXPECT_EQ(t.facet_reflectivity(0)[5], 0.25);
+  EXPECT_EQ(t.facet_emissivity(0)[0], 1.0);
 }
 
 TEST_F(SceneFile, MtlStatementGivenTwiceInOneMaterialIsRejected) {
@@ -542,7 +542,7 @@ TEST_F(SceneFile, MtlStatementGivenTwiceInOneMaterialIsRejected) {
   EXPECT_CONTAINS(msg, "cube.mtl:5: Ke given twice in material 'lamp' (lines 3 and 5)");
   // The same statement in two materials is fine.
   write("cube.mtl", "newmtl a\nKd 0.1 0.1 0.1\nnewmtl b\nKd 0.2 0.2 0.2\n");
-  EXPECT_EQ(load_channel_scene(cube_obj({"a", "b", "a", "b", "a", "b"})).rho[0][1], 0.2);
+  EXPECT_EQ(load_channel_scene(cube_obj({"a", "b", "a", "b", "a", "b"})).facet_reflectivity(0)[1], 0.2);
 }
 
 // `ke 4 4 4` read as nothing would leave E = 0: a lamp silently dark. Miscased Kd/Ke/newmtl are
@@ -568,13 +568,13 @@ TEST_F(SceneFile, IgnoredMtlStatementsAndTheirNotes) {
         "newmtl white\nKa 0.1 0.1 0.1\nKd 0.7 0.7 0.7\nKs 0.5 0.5 0.5\nNs 96\nNi 1.45\nd 1\nTr 0\nillum 2\n"
         "Tf 1 1 1\nPr 0.5\nPm 0\nmap_Bump n.png\nbump n.png\nmap_Ks s.png\n"
         "newmtl glass\nKd 0.2 0.2 0.2\nd 0.5\nmap_Kd glass.png\nns 10\nmap_Ke glow.png\n");
-  const ChannelScene s = load_channel_scene(cube_obj({"white", "white", "glass", "white", "white", "white"}));
-  EXPECT_EQ(s.rho[0][2], 0.2);
-  EXPECT_EQ(s.rho[0][0], 0.7);
+  const Scene s = load_channel_scene(cube_obj({"white", "white", "glass", "white", "white", "white"}));
+  EXPECT_EQ(s.facet_reflectivity(0)[2], 0.2);
+  EXPECT_EQ(s.facet_reflectivity(0)[0], 0.7);
   std::vector<std::string> mtl_notes;
-  for (const auto& n : s.notes)
+  for (const auto& n : s.notes())
     if (n.find("cube.mtl:") != std::string::npos) mtl_notes.push_back(n);
-  ASSERT_EQ(mtl_notes.size(), 4u) << ::testing::PrintToString(s.notes);
+  ASSERT_EQ(mtl_notes.size(), 4u) << ::testing::PrintToString(s.notes());
   EXPECT_CONTAINS(mtl_notes[0], "cube.mtl:18: d 0.5 ignored: material 'glass' is read as opaque");
   EXPECT_CONTAINS(mtl_notes[1], "cube.mtl:19: map_Kd ignored: a texture is not applied; rho is the constant Kd");
   EXPECT_CONTAINS(mtl_notes[2], "cube.mtl:20: 'ns' read as 'Ns' and ignored");
@@ -592,7 +592,7 @@ TEST_F(SceneFile, DuplicateJsonKeysAreRejectedWithTheirLines) {
   // The same key in different objects is fine.
   EXPECT_EQ(load_channel_scene(cube_off(R"({"default": {"rho": 0.5, "E": 0},
       "facets": [{"id": 1, "E": 2}, {"id": 2, "E": 3}]})"))
-                .emission[0][2],
+                .facet_emissivity(0)[2],
             3.0);
 }
 

@@ -3,12 +3,14 @@
 // is computed independently here (exact kernel, a second-order jet type, Gauss-Legendre on the
 // collapsed square, fine composite quadrature).
 #include <panelrad/operator/far_field.hpp>
+#include <panelrad/geometry/subdivision.hpp>
 
 #include <Eigen/Geometry>
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -200,6 +202,13 @@ Vec3 circumcentre(const Tri& t) {
 }
 Vec3 inner_normal(const Tri& t) { return (t.b - t.a).cross(t.c - t.a).normalized(); }
 
+// The four children of the 4-way midpoint subdivision (the cluster tree's split).
+std::array<Tri, 4> children(const Tri& t) {
+  const auto c = panelrad::geometry::midpoint_subdivision(t.a, t.b, t.c);
+  return {{{c[0][0], c[0][1], c[0][2]}, {c[1][0], c[1][1], c[1][2]}, {c[2][0], c[2][1], c[2][2]},
+           {c[3][0], c[3][1], c[3][2]}}};
+}
+
 // Gauss-Legendre nodes and weights on [0,1] by Newton's method on P_n (independent of the library).
 void gauss_legendre(int n, std::vector<double>& x, std::vector<double>& w) {
   x.assign(static_cast<std::size_t>(n), 0);
@@ -299,8 +308,7 @@ TEST(FarField, ShiftOfMomentsIsExact) {
       }
 
     // Children of the midpoint subdivision (the cluster tree's 4-way split).
-    const Vec3 ab = 0.5 * (t.a + t.b), bc = 0.5 * (t.b + t.c), ca = 0.5 * (t.c + t.a);
-    const Tri kids[4] = {{t.a, ab, ca}, {ab, t.b, bc}, {ca, bc, t.c}, {bc, ca, ab}};
+    const std::array<Tri, 4> kids = children(t);
     std::vector<double> sum(static_cast<std::size_t>(T), 0.0), mk(static_cast<std::size_t>(T));
     for (const Tri& kid : kids) {
       PlaneFrame fk = f2;  // same axes: same facet
@@ -322,10 +330,8 @@ TEST(FarField, ShiftOfMomentsIsExact) {
 template <class F>
 double composite_reference(const Tri& t, int levels, F&& f) {
   if (levels == 0) return collapsed_square_rule(t, 10, f);
-  const Vec3 ab = 0.5 * (t.a + t.b), bc = 0.5 * (t.b + t.c), ca = 0.5 * (t.c + t.a);
-  const Tri kids[4] = {{t.a, ab, ca}, {ab, t.b, bc}, {ca, bc, t.c}, {bc, ca, ab}};
   double s = 0;
-  for (const Tri& k : kids) s += composite_reference(k, levels - 1, f);
+  for (const Tri& k : children(t)) s += composite_reference(k, levels - 1, f);
   return s;
 }
 

@@ -70,7 +70,7 @@ void expect_table1_rows(int min_level, int max_level) {
   CubeRunOptions o;
   o.min_level = min_level;
   o.max_level = max_level;
-  o.op.method = "dense";  // exact closed-form entries (the paper's Table 1)
+  o.op.method = OperatorMethod::dense;  // exact closed-form entries (the paper's Table 1)
   o.solver.tolerance = 0;  // tied to the discretization error, as the CLI does
   const auto rows = run_paper_cube(o);
   ASSERT_EQ(rows.size(), static_cast<std::size_t>(max_level - min_level + 1));
@@ -100,7 +100,7 @@ TEST(PaperTablesSlow, Table3CompositeRuleRows) {
   CubeRunOptions o;
   o.min_level = 3;
   o.max_level = 5;
-  o.op.method = "fast";
+  o.op.method = OperatorMethod::fast;
   o.op.eta = 0.2;
   o.op.degree = 2;
   o.op.near.rule = NearRule::quadrature;

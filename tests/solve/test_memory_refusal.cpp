@@ -265,7 +265,7 @@ TEST(MemoryAvailable, HonoursTheAddressSpaceLimit) {
 TEST(LevelMemoryEstimate, DensePartsAreTheKnownSizes) {
   const geometry::TriangleMesh cube = constant_cube().mesh();
   OperatorOptions op;
-  op.method = "dense";
+  op.method = OperatorMethod::dense;
   SolverOptions neumann;
   neumann.kind = SolverKind::neumann;
   const LevelMemoryEstimate e = estimate_level_memory(cube, 6, op, neumann, 0.5);
@@ -290,7 +290,7 @@ TEST(LevelMemoryEstimate, FastFigureIsALowerBoundOfThePreciseOne) {
   const Scene scene = constant_cube();
   for (double eta : {0.5, 0.3}) {
     OperatorOptions op;
-    op.method = "fast";
+    op.method = OperatorMethod::fast;
     op.eta = eta;
     op.degree = 4;
     const LevelMemoryEstimate e = estimate_level_memory(scene.mesh(), 4, op, SolverOptions{}, 0.5);
@@ -315,7 +315,7 @@ TEST(LevelMemoryEstimate, FastFigureIsALowerBoundOfThePreciseOne) {
 TEST(LevelMemoryEstimate, RefusalNamesTheLevelTheEstimateAndTheLimit) {
   const geometry::TriangleMesh cube = constant_cube().mesh();
   OperatorOptions op;
-  op.method = "dense";
+  op.method = OperatorMethod::dense;
   const std::vector<LevelMemoryEstimate> levels = {estimate_level_memory(cube, 2, op, SolverOptions{}, 0.5),
                                                    estimate_level_memory(cube, 5, op, SolverOptions{}, 0.5)};
   MemoryAvailability small;

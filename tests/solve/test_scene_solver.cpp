@@ -18,10 +18,25 @@
 namespace panelrad {
 namespace {
 
-ChannelScene make_scene(geometry::TriangleMesh mesh, std::vector<std::string> channels) {
+// A scene's data per channel and facet, made a Scene (and so checked) by scene().
+struct SceneData {
+  geometry::TriangleMesh mesh;
+  std::vector<std::string> channels;
+  std::vector<std::vector<double>> rho, emission;
+  Scene scene() const {
+    Scene s(mesh, channels);
+    for (std::size_t c = 0; c < channels.size(); ++c) {
+      s.set_reflectivity(rho[c], c);
+      s.set_emissivity(emission[c], c);
+    }
+    return s;
+  }
+};
+
+SceneData make_scene(geometry::TriangleMesh mesh, std::vector<std::string> channels) {
   const geometry::ValidationReport report = geometry::validate_closed_convex(mesh);
   EXPECT_TRUE(report.valid) << report.message;
-  ChannelScene s;
+  SceneData s;
   s.mesh = std::move(mesh);
   s.channels = std::move(channels);
   const std::size_t F = static_cast<std::size_t>(s.mesh.num_facets);
@@ -33,18 +48,18 @@ ChannelScene make_scene(geometry::TriangleMesh mesh, std::vector<std::string> ch
 // E = c (1 - rho) with rho constant per facet gives u = c exactly on a closed convex surface
 // (rows of K sum to rho, paper Lemma 1): in every channel, with its own rho and c.
 void expect_constant_solution(const std::string& method, int levels) {
-  ChannelScene s = make_scene(geometry::make_prism(3, 1.0, 1.5), {"R", "G", "B"});
+  SceneData s = make_scene(geometry::make_prism(3, 1.0, 1.5), {"R", "G", "B"});
   const double c[3] = {1.0, 2.5, 0.25};
   for (std::size_t ch = 0; ch < 3; ++ch)
     for (std::size_t f = 0; f < s.rho[ch].size(); ++f) {
       s.rho[ch][f] = 0.1 + 0.15 * static_cast<double>((f + 2 * ch) % 5);  // 0.1 .. 0.7
       s.emission[ch][f] = c[ch] * (1 - s.rho[ch][f]);
     }
-  SceneSolveOptions o;
-  o.levels = levels;
-  o.method = method;
-  o.tolerance = 1e-12;
-  const SceneSolution sol = solve_channel_scene(s, o);
+  RadiositySolverOptions o;
+  o.level = levels;
+  o.method = parse_operator_method(method);
+  o.solver.tolerance = 1e-12;
+  const SceneSolution sol = solve_scene(s.scene(), o);
   ASSERT_EQ(sol.channels.size(), 3u);
   for (std::size_t ch = 0; ch < 3; ++ch) {
     const double err = (sol.channels[ch].radiosity.array() - c[ch]).abs().maxCoeff();
@@ -89,15 +104,15 @@ TEST(SceneSolver, ScaledOperatorEqualsOperatorWithReflectivity) {
 }
 
 TEST(SceneSolver, IdenticalChannelsSolvedOnceAndDarkChannelIsZero) {
-  ChannelScene s = make_scene(geometry::make_cube(), {"R", "G", "B"});
+  SceneData s = make_scene(geometry::make_cube(), {"R", "G", "B"});
   for (std::size_t ch = 0; ch < 2; ++ch) {
     for (double& r : s.rho[ch]) r = 0.5;
     s.emission[ch][0] = 1.0;
   }
   for (double& r : s.rho[2]) r = 0.3;  // no emission in B
-  SceneSolveOptions o;
-  o.levels = 1;
-  const SceneSolution sol = solve_channel_scene(s, o);
+  RadiositySolverOptions o;
+  o.level = 1;
+  const SceneSolution sol = solve_scene(s.scene(), o);
   EXPECT_EQ(sol.channels[1].shared_with, "R");
   EXPECT_EQ(sol.channels[1].radiosity, sol.channels[0].radiosity);
   EXPECT_GT(sol.channels[0].iterations, 0);
@@ -111,7 +126,7 @@ TEST(SceneSolver, IdenticalChannelsSolvedOnceAndDarkChannelIsZero) {
 // 5.2e-3 at levels 1-4 (0.35 .. 0.09 h/diam); cube 1.3e-4, 7.9e-5, 2.2e-5 at levels 2-4 (the
 // cube's level 1, 7.6e-5, is below level 2: the decrease is asymptotic, not from the first level).
 void expect_energy_balance_shrinks(geometry::TriangleMesh mesh, int first, int last) {
-  ChannelScene s = make_scene(std::move(mesh), {"value"});
+  SceneData s = make_scene(std::move(mesh), {"value"});
   for (std::size_t f = 0; f < s.rho[0].size(); ++f) s.rho[0][f] = f % 2 ? 0.9 : 0.2;
   s.emission[0].back() = 3.0;  // one facet emits
   double emitter_area = 0;
@@ -124,10 +139,10 @@ void expect_energy_balance_shrinks(geometry::TriangleMesh mesh, int first, int l
     }
   double previous = 1;
   for (int level = first; level <= last; ++level) {
-    SceneSolveOptions o;
-    o.levels = level;
-    o.tolerance = 1e-12;
-    const SceneSolution sol = solve_channel_scene(s, o);
+    RadiositySolverOptions o;
+    o.level = level;
+    o.solver.tolerance = 1e-12;
+    const SceneSolution sol = solve_scene(s.scene(), o);
     const ChannelSolution& c = sol.channels[0];
     std::printf("level %d n %d: emitted %.6e absorbed %.6e mismatch %.3e (expected %.3e)\n", level,
                 static_cast<int>(sol.n), c.emitted, c.absorbed, c.energy_mismatch, sol.expected_energy_mismatch);
@@ -146,19 +161,19 @@ TEST(SceneSolver, EnergyBalanceMismatchShrinksWithNTallPrism) {
 TEST(SceneSolver, EnergyBalanceMismatchShrinksWithNCube) { expect_energy_balance_shrinks(geometry::make_cube(), 2, 4); }
 
 TEST(SceneSolver, RefusesBadReflectivityAndSizes) {
-  ChannelScene s = make_scene(geometry::make_cube(), {"value"});
+  SceneData s = make_scene(geometry::make_cube(), {"value"});
   s.rho[0][3] = 1.0;
-  EXPECT_THROW(solve_channel_scene(s), std::invalid_argument);
+  EXPECT_THROW(solve_scene(s.scene()), std::invalid_argument);
   s.rho[0][3] = std::nan("");
-  EXPECT_THROW(solve_channel_scene(s), std::invalid_argument);
+  EXPECT_THROW(solve_scene(s.scene()), std::invalid_argument);
   s.rho[0][3] = 0.5;
   s.emission[0][2] = std::nan("");
-  EXPECT_THROW(solve_channel_scene(s), std::invalid_argument);
+  EXPECT_THROW(solve_scene(s.scene()), std::invalid_argument);
   s.emission[0][2] = 1;
-  SceneSolveOptions o;
-  o.method = "dense";
-  o.levels = 9;  // n = 12 * 4^9 = 3.1e6: a 79 TB matrix, refused before any work
-  EXPECT_ANY_THROW(solve_channel_scene(s, o));
+  RadiositySolverOptions o;
+  o.method = OperatorMethod::dense;
+  o.level = 9;  // n = 12 * 4^9 = 3.1e6: a 79 TB matrix, refused before any work
+  EXPECT_ANY_THROW(solve_scene(s.scene(), o));
   EXPECT_EQ(level_for_max_elements(12, 20000), 5);
   EXPECT_EQ(level_for_max_elements(12, 12288), 5);
   EXPECT_EQ(level_for_max_elements(12, 12287), 4);

@@ -70,7 +70,9 @@ TEST(Solvers, GmresMatchesDirectSolveAndStaysBoundedAsRhoNearsOne) {
   EXPECT_GT(previous, 0);
 }
 
-TEST(Solvers, NonConvergenceIsAnErrorNotAnAnswer) {
+// An iteration out of steps keeps its iterate and says so (status, message, error bound); it
+// is never reported as converged, and require_converged turns it into the SolverError.
+TEST(Solvers, NonConvergenceKeepsTheIterateAndSaysSo) {
   const int n = 30;
   const MatrixOperator K(row_stochastic(n, 0.999, 3));
   // Not the Perron vector 1 (for which one Krylov step is exact).
@@ -78,10 +80,29 @@ TEST(Solvers, NonConvergenceIsAnErrorNotAnAnswer) {
   panelrad::SolverOptions opt;
   opt.tolerance = 1e-12;
   opt.max_iterations = 20;
-  EXPECT_THROW(panelrad::solve_neumann(K, E, opt), panelrad::SolverError);
+  const panelrad::SolveResult neumann = panelrad::solve_neumann(K, E, opt);
+  EXPECT_EQ(neumann.status, panelrad::SolveStatus::not_converged);
+  EXPECT_EQ(neumann.iterations, 20);
+  EXPECT_EQ(neumann.u.size(), n);
+  EXPECT_TRUE(neumann.u.allFinite());
+  EXPECT_NE(neumann.message.find("20 steps"), std::string::npos) << neumann.message;
+  EXPECT_THROW(panelrad::require_converged(neumann), panelrad::SolverError);
+  // The kept iterate after 20 products, from u^(1) = E: sum_{k=0}^{20} K^k E (34), computed
+  // independently as a partial sum of the Neumann series.
+  Eigen::VectorXd partial = E, term = E, next;
+  for (int k = 1; k <= 20; ++k) {
+    K.apply(term, next);
+    term = next;
+    partial += term;
+  }
+  EXPECT_LE((neumann.u - partial).lpNorm<Eigen::Infinity>(), 1e-12 * partial.lpNorm<Eigen::Infinity>());
   // GMRES converges on this small system within ~n products; 3 products cannot reach 1e-12.
   opt.max_iterations = 3;
-  EXPECT_THROW(panelrad::solve_gmres(K, E, opt, 0.999), panelrad::SolverError);
+  const panelrad::SolveResult gmres = panelrad::solve_gmres(K, E, opt, 0.999);
+  EXPECT_EQ(gmres.status, panelrad::SolveStatus::not_converged);
+  EXPECT_TRUE(std::isfinite(gmres.error_estimate));
+  EXPECT_GT(gmres.error_estimate, opt.tolerance * gmres.u.lpNorm<Eigen::Infinity>());
+  EXPECT_THROW(panelrad::require_converged(gmres), panelrad::SolverError);
 }
 
 TEST(Solvers, BadRightHandSideIsRejected) {

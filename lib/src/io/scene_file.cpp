@@ -26,6 +26,26 @@ namespace panelrad {
 namespace {
 
 namespace fs = std::filesystem;
+
+// A scene file's data as it is read; a Scene once complete (to_scene).
+struct SceneData {
+  geometry::TriangleMesh mesh;
+  std::vector<std::string> channels;
+  std::vector<std::vector<double>> rho, emission;  // [channel][facet], checked as read
+  std::vector<std::string> facet_material;
+  std::vector<std::string> notes;
+};
+
+Scene to_scene(SceneData&& data) {
+  Scene scene(std::move(data.mesh), std::move(data.channels));
+  for (std::size_t c = 0; c < data.rho.size(); ++c) {
+    scene.set_reflectivity(std::move(data.rho[c]), c);
+    scene.set_emissivity(std::move(data.emission[c]), c);
+  }
+  scene.set_facet_material(std::move(data.facet_material));
+  for (std::string& note : data.notes) scene.add_note(std::move(note));
+  return scene;
+}
 using geometry::Index;
 using Json = nlohmann::json;
 
@@ -236,8 +256,8 @@ void parse_mtl(const std::string& path, const std::string& role, std::map<std::s
   }
 }
 
-ChannelScene load_obj_scene(const std::string& path, const geometry::TextReadOptions& options) {
-  ChannelScene scene;
+SceneData load_obj_scene(const std::string& path, const geometry::TextReadOptions& options) {
+  SceneData scene;
   geometry::ObjMaterialUse use;  // mtllib and per-face usemtl, as the reader counted the faces
   scene.mesh = load_mesh(path, scene.notes, options, &use);
   const auto nf = static_cast<std::size_t>(scene.mesh.num_facets);
@@ -451,9 +471,9 @@ void check_values(const std::vector<double>& values, bool is_rho, const std::vec
   }
 }
 
-ChannelScene load_off_scene(const std::string& path, const std::string& materials_path,
+SceneData load_off_scene(const std::string& path, const std::string& materials_path,
                             const geometry::TextReadOptions& options) {
-  ChannelScene scene;
+  SceneData scene;
   scene.mesh = load_mesh(path, scene.notes, options);
   const auto nf = static_cast<std::size_t>(scene.mesh.num_facets);
 
@@ -609,16 +629,16 @@ ChannelScene load_off_scene(const std::string& path, const std::string& material
 
 }  // namespace
 
-ChannelScene load_channel_scene(const std::string& path, const std::string& materials_path,
-                                const geometry::TextReadOptions& options) {
+Scene load_channel_scene(const std::string& path, const std::string& materials_path,
+                         const geometry::TextReadOptions& options) {
   const std::string ext = lower_extension(path);
   if (ext == ".obj") {
     if (!materials_path.empty())
       fail(path, 0, "a materials file (" + materials_path + ") applies to OFF scenes only; an OBJ names its MTL "
                     "files with mtllib");
-    return load_obj_scene(path, options);
+    return to_scene(load_obj_scene(path, options));
   }
-  if (ext == ".off") return load_off_scene(path, materials_path, options);
+  if (ext == ".off") return to_scene(load_off_scene(path, materials_path, options));
   fail(path, 0, "unknown scene format " + in_quotes(ext.empty() ? "(no extension)" : ext) +
                     ": expected .obj (with MTL) or .off (with a JSON sidecar)");
 }

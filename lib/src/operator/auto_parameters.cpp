@@ -1,5 +1,7 @@
 #include <panelrad/operator/auto_parameters.hpp>
 
+#include <panelrad/geometry/bounding_box.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -37,13 +39,8 @@ ProblemSize problem_size(const geometry::TriangleMesh& mesh, int level) {
         throw std::invalid_argument("problem_size: vertex index out of range in '" + mesh.source + "'");
       longest = std::max(longest, (mesh.vertices[a] - mesh.vertices[b]).norm());
     }
-  Vec3 lo = mesh.vertices.front(), hi = mesh.vertices.front();
-  for (const Vec3& v : mesh.vertices) {
-    lo = lo.cwiseMin(v);
-    hi = hi.cwiseMax(v);
-  }
   s.mesh_size = std::ldexp(longest, -level);  // midpoint subdivision halves every edge
-  s.diameter = (hi - lo).norm();
+  s.diameter = geometry::bounding_box_diameter(mesh.vertices);
   return s;
 }
 
@@ -66,10 +63,10 @@ OperatorOptions choose_parameters(const ProblemSize& size, double margin, double
   OperatorOptions o;
   o.near.rule = NearRule::exact;  // no mu to tune; never the limiting error (header)
   if (size.n <= kDenseMaxN) {
-    o.method = "dense";
+    o.method = OperatorMethod::dense;
     return o;
   }
-  o.method = "fast";
+  o.method = OperatorMethod::fast;
   // delta* halves per level and shrinks by the amplification: a target log2 A levels finer.
   const double lambda = size.equivalent_level() + std::log2(amplification);
   // Each setting while its self-check on the cube (header) stays below delta* = 1.02e-3 2^-lambda.
@@ -101,7 +98,7 @@ double self_check_threshold(const ProblemSize& size, double rho_max) {
 
 OperatorOptions tighten_parameters(const OperatorOptions& options) {
   OperatorOptions o = options;
-  if (o.method != "fast") return o;
+  if (o.method != OperatorMethod::fast) return o;
   if (o.degree < 6) {
     ++o.degree;
     return o;
@@ -116,9 +113,9 @@ OperatorOptions tighten_parameters(const OperatorOptions& options) {
 
 std::string describe_parameters(const OperatorOptions& o) {
   std::ostringstream os;
-  os << o.method << ", " << to_string(o.near.rule) << " near field";
+  os << to_string(o.method) << ", " << to_string(o.near.rule) << " near field";
   if (o.near.rule == NearRule::quadrature) os << " (mu " << o.near.mu << ")";
-  if (o.method == "fast") os << ", eta " << o.eta << ", M " << o.degree;
+  if (o.method == OperatorMethod::fast) os << ", eta " << o.eta << ", M " << o.degree;
   return os.str();
 }
 

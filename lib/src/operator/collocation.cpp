@@ -1,14 +1,26 @@
 #include <panelrad/operator/collocation.hpp>
 #include <panelrad/support/resources.hpp>
+#include <panelrad/geometry/parallel_for.hpp>
 
 #include <cmath>
-#include <exception>
 #include <string>
 #include <stdexcept>
 
 namespace panelrad {
 
-Collocation::Collocation(const Scene& scene, int level) {
+namespace {
+
+// Runs row(i) for every element in parallel (each row is independent, and the values do not
+// depend on the thread count); on bad data, rethrows the lowest failing row's error whatever the
+// thread count (a deterministic message).
+template <class Row>
+void for_each_row(Index n, const Row& row) {
+  geometry::parallel_for(n, row, 16);
+}
+
+}  // namespace
+
+Collocation::Collocation(const Scene& scene, int level, std::size_t channel) {
   Stopwatch clock;
   // The tree is refused (with its estimate) when it exceeds what this process may still
   // allocate: MemAvailable, ulimit -v and the cgroup limit (available_memory_bytes).
@@ -20,32 +32,34 @@ Collocation::Collocation(const Scene& scene, int level) {
   E_.resize(n);
   const bool manufactured = scene.has_manufactured_solution();
   if (manufactured) true_u_.resize(n);
-  // Each row is independent: parallel, and the values do not depend on the thread count.
-  // On bad data, report the lowest failing row whatever the thread count (deterministic message).
-  std::exception_ptr failure;
-  Index failed_row = n;
-#pragma omp parallel for schedule(dynamic, 16)
-  for (Index i = 0; i < n; ++i) {
-    try {
-      const Vec3& P = collocation_point(i);
-      const Index f = facet(i);
-      rho_[i] = scene.reflectivity(P, f);
-      if (manufactured) {
-        true_u_[i] = scene.manufactured_solution()(P, f);
-        E_[i] = scene.manufactured_emissivity(P, f, normal(i));
-      } else {
-        E_[i] = scene.emissivity(P, f);
-      }
-    } catch (...) {
-#pragma omp critical(panelrad_collocation_failure)
-      if (i < failed_row) {
-        failed_row = i;
-        failure = std::current_exception();
-      }
+  for_each_row(n, [&](Index i) {
+    const Vec3& P = collocation_point(i);
+    const Index f = facet(i);
+    rho_[i] = scene.reflectivity(P, f, channel);
+    if (manufactured) {
+      true_u_[i] = scene.manufactured_solution()(P, f);
+      E_[i] = scene.manufactured_emissivity(P, f, normal(i));
+    } else {
+      E_[i] = scene.emissivity(P, f, channel);
     }
-  }
-  if (failure) std::rethrow_exception(failure);
+  });
   emissivity_s_ = clock.seconds();
+}
+
+Collocation::ChannelValues Collocation::channel_values(const Scene& scene, std::size_t channel) const {
+  if (scene.has_manufactured_solution())
+    throw std::logic_error("channel_values: a manufactured scene's E is the constructor's (emissivity())");
+  ChannelValues v;
+  const Index n = size();
+  v.rho.resize(n);
+  v.E.resize(n);
+  for_each_row(n, [&](Index i) {
+    const Vec3& P = collocation_point(i);
+    const Index f = facet(i);
+    v.rho[i] = scene.reflectivity(P, f, channel);
+    v.E[i] = scene.emissivity(P, f, channel);
+  });
+  return v;
 }
 
 Collocation Collocation::with_row_weights(Eigen::VectorXd weights) const {

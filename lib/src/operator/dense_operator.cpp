@@ -23,7 +23,7 @@ void DenseOperator::check_fits(geometry::Index n) {
     std::ostringstream os;
     os << "dense matrix K_n for n = " << n << " needs " << format_bytes(static_cast<double>(need))
        << " but only " << format_bytes(static_cast<double>(avail)) << " of memory is available ("
-       << available.binding() << "); use the fast method (--method fast) or fewer levels";
+       << available.binding() << "); use the fast method (section 4) or fewer levels";
     throw ResourceError(os.str());
   }
 }

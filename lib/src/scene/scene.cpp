@@ -3,53 +3,110 @@
 #include <panelrad/quadrature/singular_integration.hpp>
 #include <panelrad/scene/scene.hpp>
 
+#include <algorithm>
+#include <cfloat>
+#include <charconv>
 #include <cmath>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace panelrad {
 
 namespace {
-void check_reflectivity(double rho, const std::string& where) {
-  if (!(rho >= 0.0 && rho < 1.0)) {  // also catches NaN
-    std::ostringstream os;
-    os << "reflectivity rho = " << rho << " at " << where << " is outside [0, 1) (paper (7))";
-    throw std::invalid_argument(os.str());
-  }
+
+/// Shortest round-trip text of a number (inf, nan as such).
+std::string number(double v) {
+  char buf[40];
+  const auto [ptr, ec] = std::to_chars(buf, buf + sizeof buf, v);
+  return ec == std::errc() ? std::string(buf, ptr) : std::to_string(v);
 }
-void check_finite(double v, const char* what, const std::string& where) {
-  if (!std::isfinite(v)) {
-    std::ostringstream os;
-    os << what << " = " << v << " at " << where << " is not finite";
-    throw std::invalid_argument(os.str());
-  }
-}
-std::string facet_name(Index f) { return "facet " + std::to_string(f); }
+
 std::string point_name(const Vec3& P, Index f) {
   std::ostringstream os;
   os << "point (" << P.x() << ", " << P.y() << ", " << P.z() << ") of facet " << f;
   return os.str();
 }
-void check_size(std::size_t got, Index facets, const char* what) {
+
+void check_size(std::size_t got, Index facets, const char* what, const std::string& channel) {
   if (got != static_cast<std::size_t>(facets)) {
     std::ostringstream os;
-    os << what << ": " << got << " values given for " << facets << " facets";
+    os << what << " of channel " << channel << ": " << got << " values given for " << facets << " facets";
     throw std::invalid_argument(os.str());
   }
 }
+
 }  // namespace
 
-Scene::Scene(geometry::TriangleMesh validated_mesh) : mesh_(std::move(validated_mesh)) {
+std::string reflectivity_problem(double rho) {
+  if (!std::isfinite(rho)) return "is not a finite number";
+  if (!(rho >= 0.0 && rho < 1.0)) return "is outside [0, 1) (paper (7): 0 <= rho < 1)";
+  if (rho > 0.0 && rho < DBL_MIN)
+    return "is subnormal (below DBL_MIN = " + number(DBL_MIN) +
+           "): it has lost precision and makes the solve compute with subnormal numbers; write 0";
+  return "";
+}
+
+std::string emission_problem(double e) {
+  if (!std::isfinite(e)) return "is not a finite number";
+  if (e < 0.0) return "is negative (emission E must be >= 0)";
+  if (e > 0.0 && e < DBL_MIN)
+    return "is subnormal (below DBL_MIN = " + number(DBL_MIN) +
+           "): it has lost precision already and the solve would lose the rest; scale all E up (the radiosity "
+           "equation is linear in E) or write 0";
+  if (e > 0.0 && e < kMinPositiveEmission)
+    return "is below " + number(kMinPositiveEmission) +
+           ", the smallest non-zero E accepted (products with areas and squared norms in the solve would "
+           "underflow); scale all E up (the radiosity equation is linear in E) or write 0";
+  if (e > kMaxEmission)
+    return "is above " + number(kMaxEmission) +
+           ", the largest E accepted (the radiosity u <= E / (1 - rho) and its squares and products with areas "
+           "in the solve would overflow); scale all E down (the radiosity equation is linear in E)";
+  return "";
+}
+
+namespace {
+
+// The one place a value is refused: "reflectivity rho = 1 of facet 3, channel R, is outside
+// [0, 1) (paper (7): 0 <= rho < 1)".
+void check_value(bool is_rho, double v, const std::string& where, const std::string& channel) {
+  const std::string problem = is_rho ? reflectivity_problem(v) : emission_problem(v);
+  if (problem.empty()) return;
+  throw std::invalid_argument(std::string(is_rho ? "reflectivity rho = " : "emission E = ") + number(v) + " of " +
+                              where + ", channel " + channel + ", " + problem);
+}
+
+}  // namespace
+
+Scene::Scene(geometry::TriangleMesh validated_mesh, std::vector<std::string> channels)
+    : mesh_(std::move(validated_mesh)), channels_(std::move(channels)) {
   if (mesh_.triangles.empty()) throw std::invalid_argument("scene: empty mesh");
-  rho_facet_.assign(static_cast<std::size_t>(mesh_.num_facets), 0.0);
-  e_facet_.assign(static_cast<std::size_t>(mesh_.num_facets), 1.0);
+  if (channels_.empty()) throw std::invalid_argument("scene: no channels");
+  for (std::size_t c = 0; c < channels_.size(); ++c) {
+    if (channels_[c].empty()) throw std::invalid_argument("scene: channel " + std::to_string(c) + " has no name");
+    for (std::size_t d = 0; d < c; ++d)
+      if (channels_[d] == channels_[c]) throw std::invalid_argument("scene: channel '" + channels_[c] + "' is named twice");
+  }
+  data_.resize(channels_.size());
+  for (Channel& ch : data_) {
+    ch.rho_facet.assign(static_cast<std::size_t>(mesh_.num_facets), 0.0);
+    ch.e_facet.assign(static_cast<std::size_t>(mesh_.num_facets), 1.0);
+  }
 }
 
 Scene Scene::load(const std::string& path_or_builtin, std::vector<std::string>* notes) {
   return Scene(geometry::load_closed_convex(path_or_builtin, notes));
 }
+
+const Scene::Channel& Scene::channel(std::size_t c) const {
+  if (c >= data_.size())
+    throw std::out_of_range("scene: channel " + std::to_string(c) + " of " + std::to_string(data_.size()));
+  return data_[c];
+}
+
+Scene::Channel& Scene::channel(std::size_t c) { return const_cast<Channel&>(std::as_const(*this).channel(c)); }
 
 Vec3 Scene::triangle_inner_normal(Index t) const {
   const auto& tri = mesh_.triangles[static_cast<std::size_t>(t)];
@@ -59,72 +116,87 @@ Vec3 Scene::triangle_inner_normal(Index t) const {
   return -(b - a).cross(c - a).normalized();  // outward CCW orientation -> inner normal
 }
 
-void Scene::set_reflectivity(double rho) {
-  check_reflectivity(rho, "every facet");
-  rho_fn_ = nullptr;
-  rho_facet_.assign(static_cast<std::size_t>(mesh_.num_facets), rho);
+void Scene::set_reflectivity(double rho, std::size_t c) {
+  set_reflectivity(std::vector<double>(static_cast<std::size_t>(mesh_.num_facets), rho), c);
 }
 
-void Scene::set_reflectivity(std::vector<double> per_facet) {
-  check_size(per_facet.size(), mesh_.num_facets, "reflectivity");
-  for (std::size_t f = 0; f < per_facet.size(); ++f)
-    check_reflectivity(per_facet[f], facet_name(static_cast<Index>(f)));
-  rho_fn_ = nullptr;
-  rho_facet_ = std::move(per_facet);
+void Scene::set_reflectivity(std::vector<double> per_facet, std::size_t c) {
+  Channel& ch = channel(c);
+  check_size(per_facet.size(), mesh_.num_facets, "reflectivity", channels_[c]);
+  for (std::size_t f = 0; f < per_facet.size(); ++f) check_value(true, per_facet[f], "facet " + std::to_string(f), channels_[c]);
+  ch.rho_fn = nullptr;
+  ch.rho_facet = std::move(per_facet);
 }
 
-void Scene::set_reflectivity(SurfaceFunction rho) {
-  if (!rho) throw std::invalid_argument("reflectivity: empty function");
-  rho_fn_ = std::move(rho);
+void Scene::set_reflectivity(SurfaceFunction rho, std::size_t c) {
+  Channel& ch = channel(c);
+  if (!rho) throw std::invalid_argument("reflectivity of channel " + channels_[c] + ": empty function");
+  ch.rho_fn = std::move(rho);
+  ch.rho_facet.clear();
 }
 
-void Scene::set_emissivity(double e) {
-  check_finite(e, "emissivity", "every facet");
-  e_fn_ = nullptr;
+void Scene::set_emissivity(double e, std::size_t c) {
+  set_emissivity(std::vector<double>(static_cast<std::size_t>(mesh_.num_facets), e), c);
+}
+
+void Scene::set_emissivity(std::vector<double> per_facet, std::size_t c) {
+  Channel& ch = channel(c);
+  check_size(per_facet.size(), mesh_.num_facets, "emission", channels_[c]);
+  for (std::size_t f = 0; f < per_facet.size(); ++f) check_value(false, per_facet[f], "facet " + std::to_string(f), channels_[c]);
+  ch.e_fn = nullptr;
   solution_ = nullptr;
-  e_facet_.assign(static_cast<std::size_t>(mesh_.num_facets), e);
+  ch.e_facet = std::move(per_facet);
 }
 
-void Scene::set_emissivity(std::vector<double> per_facet) {
-  check_size(per_facet.size(), mesh_.num_facets, "emissivity");
-  for (std::size_t f = 0; f < per_facet.size(); ++f)
-    check_finite(per_facet[f], "emissivity", facet_name(static_cast<Index>(f)));
-  e_fn_ = nullptr;
+void Scene::set_emissivity(SurfaceFunction e, std::size_t c) {
+  Channel& ch = channel(c);
+  if (!e) throw std::invalid_argument("emission of channel " + channels_[c] + ": empty function");
   solution_ = nullptr;
-  e_facet_ = std::move(per_facet);
-}
-
-void Scene::set_emissivity(SurfaceFunction e) {
-  if (!e) throw std::invalid_argument("emissivity: empty function");
-  solution_ = nullptr;
-  e_fn_ = std::move(e);
+  ch.e_fn = std::move(e);
+  ch.e_facet.clear();
 }
 
 void Scene::set_manufactured_solution(SurfaceFunction u, double rel_tol) {
+  if (channels_.size() != 1)
+    throw std::logic_error("manufactured solution: a scalar scene (one channel) only, this one has " +
+                           std::to_string(channels_.size()));
   if (!u) throw std::invalid_argument("manufactured solution: empty function");
   if (!(rel_tol > 0 && rel_tol < 1)) throw std::invalid_argument("manufactured solution: rel_tol must be in (0,1)");
   solution_ = std::move(u);
   solution_tol_ = rel_tol;
 }
 
-double Scene::reflectivity(const Vec3& P, Index facet) const {
-  if (!rho_fn_) return rho_facet_[static_cast<std::size_t>(facet)];
-  const double rho = rho_fn_(P, facet);
-  check_reflectivity(rho, point_name(P, facet));
+double Scene::reflectivity(const Vec3& P, Index facet, std::size_t c) const {
+  const Channel& ch = channel(c);
+  if (!ch.rho_fn) return ch.rho_facet[static_cast<std::size_t>(facet)];
+  const double rho = ch.rho_fn(P, facet);
+  check_value(true, rho, point_name(P, facet), channels_[c]);
   return rho;
 }
 
-double Scene::emissivity(const Vec3& P, Index facet) const {
-  if (!e_fn_) return e_facet_[static_cast<std::size_t>(facet)];
-  const double e = e_fn_(P, facet);
-  check_finite(e, "emissivity", point_name(P, facet));
+double Scene::emissivity(const Vec3& P, Index facet, std::size_t c) const {
+  const Channel& ch = channel(c);
+  if (!ch.e_fn) return ch.e_facet[static_cast<std::size_t>(facet)];
+  const double e = ch.e_fn(P, facet);
+  check_value(false, e, point_name(P, facet), channels_[c]);
   return e;
+}
+
+const std::vector<double>& Scene::facet_reflectivity(std::size_t c) const { return channel(c).rho_facet; }
+const std::vector<double>& Scene::facet_emissivity(std::size_t c) const { return channel(c).e_facet; }
+
+void Scene::set_facet_material(std::vector<std::string> per_facet) {
+  if (!per_facet.empty() && per_facet.size() != static_cast<std::size_t>(mesh_.num_facets))
+    throw std::invalid_argument("facet materials: " + std::to_string(per_facet.size()) + " names for " +
+                                std::to_string(mesh_.num_facets) + " facets");
+  facet_material_ = std::move(per_facet);
 }
 
 double Scene::manufactured_emissivity(const Vec3& P, Index facet, const Vec3& nP) const {
   if (!solution_) throw std::logic_error("manufactured_emissivity: no manufactured solution set");
   const double u = solution_(P, facet);
-  check_finite(u, "manufactured solution", point_name(P, facet));
+  if (!std::isfinite(u))
+    throw std::invalid_argument("manufactured solution = " + number(u) + " at " + point_name(P, facet) + " is not finite");
   const double rho = reflectivity(P, facet);
   if (rho == 0) return u;
   // (1/pi) Int_S u G dS over the exact surface. The triangles of P's own facet are coplanar with
@@ -155,9 +227,11 @@ double Scene::manufactured_emissivity(const Vec3& P, Index facet, const Vec3& nP
 }
 
 double Scene::max_reflectivity() const {
-  if (rho_fn_) return std::numeric_limits<double>::quiet_NaN();
   double m = 0;
-  for (double r : rho_facet_) m = std::max(m, r);
+  for (const Channel& ch : data_) {
+    if (ch.rho_fn) return std::numeric_limits<double>::quiet_NaN();
+    for (double r : ch.rho_facet) m = std::max(m, r);
+  }
   return m;
 }
 

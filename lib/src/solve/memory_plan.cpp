@@ -74,7 +74,7 @@ std::vector<LevelMemoryEstimate> estimate_levels_memory(const geometry::Triangle
     e.tree = fits_index ? geometry::ClusterTree::estimate_bytes(static_cast<Index>(n0), level) : kMax;
     e.collocation = saturate(n * options.collocation_vectors * sizeof(double));
     e.fields = saturate(n * static_cast<long double>(options.field_bytes_per_element));
-    if (op.method == "dense") {
+    if (op.method == OperatorMethod::dense) {
       e.op = fits_index ? DenseOperator::matrix_bytes(static_cast<Index>(n)) : kMax;
     } else if (!fits_index) {
       e.op = kMax;
@@ -135,7 +135,7 @@ void refuse_levels_that_cannot_fit(const std::vector<LevelMemoryEstimate>& level
     os << what << "level " << e.level << " (n = " << std::fixed << e.n << ", " << e.method << ") needs "
        << e.breakdown() << ", more than the " << format_bytes(static_cast<double>(avail)) << " available ("
        << available.binding() << ", 10% kept in reserve); refused before any work: use fewer levels";
-    if (e.method.rfind("dense", 0) == 0) os << " or the fast method (--method fast)";
+    if (e.method.rfind("dense", 0) == 0) os << " or the fast method (section 4)";
     if (levels.size() > 1) os << " (every level is checked before the first is solved)";
     throw ResourceError(os.str());
   }

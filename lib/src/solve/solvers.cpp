@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace panelrad {
@@ -24,6 +25,71 @@ void check_sizes(const RadiosityOperator& K, const Eigen::VectorXd& E) {
   if (E.size() != K.size()) throw std::invalid_argument("solver: right-hand side size differs from n");
   if (!E.allFinite()) throw std::invalid_argument("solver: right-hand side has NaN or Inf entries");
 }
+// One restart cycle of GMRES on (I - K) c = res: Arnoldi with modified Gram-Schmidt and Givens
+// rotations, up to m products (and no more than options.max_iterations in all), stopping when the
+// error bound amplification |g[j+1]| (|g[j+1]| the 2-norm residual) falls to `stop`.
+class GmresCycle {
+ public:
+  GmresCycle(Eigen::Index n, int m) : m_(m), V_(n, m + 1), H_(Eigen::MatrixXd::Zero(m + 1, m)), cs_(m), sn_(m), g_(m + 1) {}
+
+  /// The correction c_j in the Krylov space of res; `products` counts the products with K.
+  Eigen::VectorXd correction(const RadiosityOperator& K, const Eigen::VectorXd& res, double stop,
+                             const SolverOptions& options, double amplification, int& products) {
+    const double beta = res.norm();
+    V_.col(0) = res / beta;
+    g_.setZero();
+    g_[0] = beta;
+    H_.setZero();
+    int j = 0;
+    for (; j < m_ && products < options.max_iterations; ++j) {
+      const bool done = arnoldi_step(K, j);
+      ++products;
+      if (options.progress) options.progress(products, amplification * std::abs(g_[j + 1]));
+      // |g[j+1]| is the 2-norm residual; ||.||_inf <= ||.||_2
+      if (amplification * std::abs(g_[j + 1]) <= stop) {
+        ++j;
+        break;
+      }
+      if (done) break;
+    }
+    // Solve the j x j upper-triangular system.
+    const Eigen::VectorXd y = H_.topLeftCorner(j, j).triangularView<Eigen::Upper>().solve(g_.head(j));
+    return V_.leftCols(j) * y;
+  }
+
+ private:
+  // Column j of the Hessenberg matrix, rotated to triangular form; true when H(j, j) = 0 (the
+  // Krylov space is exhausted).
+  bool arnoldi_step(const RadiosityOperator& K, int j) {
+    Eigen::VectorXd Kv;
+    K.apply(V_.col(j), Kv);
+    Eigen::VectorXd w = V_.col(j) - Kv;  // (I - K) v_j
+    for (int i = 0; i <= j; ++i) {       // modified Gram-Schmidt
+      H_(i, j) = w.dot(V_.col(i));
+      w -= H_(i, j) * V_.col(i);
+    }
+    H_(j + 1, j) = w.norm();
+    if (H_(j + 1, j) > 0) V_.col(j + 1) = w / H_(j + 1, j);
+    for (int i = 0; i < j; ++i) {  // apply previous Givens rotations
+      const double t = cs_[i] * H_(i, j) + sn_[i] * H_(i + 1, j);
+      H_(i + 1, j) = -sn_[i] * H_(i, j) + cs_[i] * H_(i + 1, j);
+      H_(i, j) = t;
+    }
+    const double d = std::hypot(H_(j, j), H_(j + 1, j));
+    cs_[j] = d > 0 ? H_(j, j) / d : 1;
+    sn_[j] = d > 0 ? H_(j + 1, j) / d : 0;
+    H_(j, j) = d;
+    H_(j + 1, j) = 0;
+    g_[j + 1] = -sn_[j] * g_[j];
+    g_[j] = cs_[j] * g_[j];
+    return H_(j, j) == 0;
+  }
+
+  int m_;
+  Eigen::MatrixXd V_, H_;
+  Eigen::VectorXd cs_, sn_, g_;
+};
+
 }  // namespace
 
 SolverKind parse_solver(const std::string& name) {
@@ -32,6 +98,14 @@ SolverKind parse_solver(const std::string& name) {
   if (name == "gmres") return SolverKind::gmres;
   if (name == "lu") return SolverKind::lu;
   throw std::invalid_argument("solver '" + name + "' is not auto, neumann, gmres or lu");
+}
+
+const char* to_string(SolveStatus status) {
+  return status == SolveStatus::converged ? "converged" : "not converged";
+}
+
+void require_converged(const SolveResult& result) {
+  if (result.status != SolveStatus::converged) throw SolverError(result.message);
 }
 
 const char* to_string(SolverKind kind) {
@@ -72,7 +146,9 @@ SolveResult solve_neumann(const RadiosityOperator& K, const Eigen::VectorXd& E, 
     if (options.progress) options.progress(r.iterations, q < 1 ? q / (1 - q) * step_norm : 0.0);
     previous_norm = step_norm;
     if (!u.allFinite()) throw SolverError("Neumann iteration produced NaN/Inf at step " + std::to_string(k));
-    // Error bound from (35) with contraction q < 1: ||u_n - u^(k+1)|| <= q/(1-q) ||step||.
+    // Error bound from (35) with contraction q < 1: ||u_n - u^(k+1)|| <= q/(1-q) ||step||;
+    // none (+inf) while the ratio is not yet known to be below 1.
+    r.error_estimate = std::numeric_limits<double>::infinity();
     if (k >= 3 && q < 1) {
       const double q_safe = std::max(q, r.ratio_history[r.ratio_history.size() - 2]);
       if (q_safe < 1) {
@@ -98,8 +174,14 @@ SolveResult solve_neumann(const RadiosityOperator& K, const Eigen::VectorXd& E, 
   std::ostringstream os;
   os << "Neumann iteration did not reach the tolerance " << options.tolerance << " in "
      << options.max_iterations << " steps (last ratio " << ratio
-     << "; a ratio near 1 means rho close to 1: use --solver gmres)";
-  throw SolverError(os.str());
+     << "; a ratio near 1 means rho close to 1, where GMRES needs far fewer products)";
+  r.status = SolveStatus::not_converged;
+  r.message = os.str();
+  r.convergence_ratio = ratio;
+  r.u = std::move(u);
+  r.residual = relative_residual(K, E, r.u);
+  r.seconds = clock.seconds();
+  return r;
 }
 
 SolveResult solve_gmres(const RadiosityOperator& K, const Eigen::VectorXd& E, const SolverOptions& options,
@@ -118,56 +200,17 @@ SolveResult solve_gmres(const RadiosityOperator& K, const Eigen::VectorXd& E, co
     r.u = u;
     return r;
   }
-  Eigen::MatrixXd V(n, m + 1);
-  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(m + 1, m);
-  Eigen::VectorXd cs(m), sn(m), g(m + 1);
+  GmresCycle cycle(n, m);
   while (r.iterations < options.max_iterations) {
     K.apply(u, Kv);
     ++r.iterations;
     Eigen::VectorXd res = E - u + Kv;
-    double beta = res.norm();
     const double res_inf = inf_norm(res);
     r.error_estimate = amplification * res_inf;
     if (options.progress) options.progress(r.iterations, r.error_estimate);
     if (r.error_estimate <= options.tolerance * std::max(inf_norm(u), 1e-300)) break;
-    V.col(0) = res / beta;
-    g.setZero();
-    g[0] = beta;
-    H.setZero();
-    int j = 0;
-    for (; j < m && r.iterations < options.max_iterations; ++j) {
-      K.apply(V.col(j), Kv);
-      ++r.iterations;
-      Eigen::VectorXd w = V.col(j) - Kv;  // (I - K) v_j
-      for (int i = 0; i <= j; ++i) {      // modified Gram-Schmidt
-        H(i, j) = w.dot(V.col(i));
-        w -= H(i, j) * V.col(i);
-      }
-      H(j + 1, j) = w.norm();
-      if (H(j + 1, j) > 0) V.col(j + 1) = w / H(j + 1, j);
-      for (int i = 0; i < j; ++i) {  // apply previous Givens rotations
-        const double t = cs[i] * H(i, j) + sn[i] * H(i + 1, j);
-        H(i + 1, j) = -sn[i] * H(i, j) + cs[i] * H(i + 1, j);
-        H(i, j) = t;
-      }
-      const double d = std::hypot(H(j, j), H(j + 1, j));
-      cs[j] = d > 0 ? H(j, j) / d : 1;
-      sn[j] = d > 0 ? H(j + 1, j) / d : 0;
-      H(j, j) = d;
-      H(j + 1, j) = 0;
-      g[j + 1] = -sn[j] * g[j];
-      g[j] = cs[j] * g[j];
-      if (options.progress) options.progress(r.iterations, amplification * std::abs(g[j + 1]));
-      // |g[j+1]| is the 2-norm residual; ||.||_inf <= ||.||_2
-      if (amplification * std::abs(g[j + 1]) <= 0.5 * options.tolerance * std::max(inf_norm(u), inf_norm(E))) {
-        ++j;
-        break;
-      }
-      if (H(j, j) == 0) break;
-    }
-    // Solve the j x j upper-triangular system and update u.
-    const Eigen::VectorXd y = H.topLeftCorner(j, j).triangularView<Eigen::Upper>().solve(g.head(j));
-    u += V.leftCols(j) * y;
+    const double stop = 0.5 * options.tolerance * std::max(inf_norm(u), inf_norm(E));
+    u += cycle.correction(K, res, stop, options, amplification, r.iterations);
     if (!u.allFinite()) throw SolverError("GMRES produced NaN/Inf");
   }
   K.apply(u, Kv);
@@ -179,7 +222,8 @@ SolveResult solve_gmres(const RadiosityOperator& K, const Eigen::VectorXd& E, co
     std::ostringstream os;
     os << "GMRES did not reach the tolerance " << options.tolerance << " in " << options.max_iterations
        << " products (error bound " << r.error_estimate << ")";
-    throw SolverError(os.str());
+    r.status = SolveStatus::not_converged;
+    r.message = os.str();
   }
   r.u = std::move(u);
   r.seconds = clock.seconds();
@@ -195,7 +239,7 @@ SolveResult solve_lu(const DenseOperator& K, const Eigen::VectorXd& E) {
   const std::size_t need = DenseOperator::matrix_bytes(static_cast<geometry::Index>(n));
   if (need > available_memory_bytes() / 10 * 9)
     throw std::runtime_error("LU of I - K_n needs another " + format_bytes(static_cast<double>(need)) +
-                             ", more than the memory available; use --solver neumann or gmres");
+                             ", more than the memory available; use the Neumann or GMRES iteration");
   Eigen::MatrixXd A = -K.matrix();
   A.diagonal().array() += 1.0;
   Eigen::PartialPivLU<Eigen::Ref<Eigen::MatrixXd>> lu(A);  // in place
@@ -237,7 +281,7 @@ SolveResult solve(const RadiosityOperator& K, const Eigen::VectorXd& E, const So
     case SolverKind::gmres: return solve_gmres(K, E, options, max_reflectivity);
     case SolverKind::lu: {
       const auto* dense = dynamic_cast<const DenseOperator*>(&K);
-      if (!dense) throw std::invalid_argument("the LU solver needs the dense method (--method dense)");
+      if (!dense) throw std::invalid_argument("the LU solver needs the dense operator (33)");
       return solve_lu(*dense, E);
     }
   }

@@ -4,7 +4,6 @@
 #include <sys/resource.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -172,15 +171,6 @@ std::size_t available_memory_bytes() { return memory_availability().bytes(); }
 std::string describe_available_memory() {
   const MemoryAvailability m = memory_availability();
   return format_bytes(static_cast<double>(m.bytes())) + " available (" + m.binding() + ")";
-}
-
-std::string format_bytes(double bytes) {
-  char buf[64];
-  if (bytes >= 1e9) std::snprintf(buf, sizeof buf, "%.2f GB", bytes / 1e9);
-  else if (bytes >= 1e6) std::snprintf(buf, sizeof buf, "%.1f MB", bytes / 1e6);
-  else if (bytes >= 1e3) std::snprintf(buf, sizeof buf, "%.1f kB", bytes / 1e3);
-  else std::snprintf(buf, sizeof buf, "%.0f B", bytes);
-  return buf;
 }
 
 void set_threads(int threads) {

@@ -1,8 +1,11 @@
 #pragma once
 // Validation of a closed convex polyhedral surface: CGAL exact predicates decide every rule; a
-// convexity violation that the rounding of the input coordinates explains (see InputRounding and
-// validate_closed_convex) is accepted with a note, anything larger is refused.
+// convexity violation that the rounding of the input coordinates explains (see InputRounding in
+// input_rounding.hpp, and validate_closed_convex) is accepted with a note, anything larger is
+// refused. Includes the rounding model and the planar facet count, which share that bound.
+#include <panelrad/geometry/input_rounding.hpp>
 #include <panelrad/geometry/mesh.hpp>
+#include <panelrad/geometry/planar_facets.hpp>
 
 #include <cstddef>
 #include <string>
@@ -34,44 +37,6 @@ struct ValidationReport {
   double worst_rounding_ratio = 0.0;        ///< convex_within_rounding: max over the violations of
                                             ///< distance / its rounding bound (<= 1)
 };
-
-/// What the rounding of the input coordinates can have moved each vertex by.
-///
-/// A coordinate written with d significant decimal digits is off from the value it rounds by at most
-/// half a unit in its last digit, 0.5 * 10^(e + 1 - d) <= 0.5 * 10^(1 - d) * |x| (e = its decimal
-/// exponent); a double computed by a rotation x' = R x in double precision (R's entries rounded, each
-/// coordinate a 3-term dot product) is off by at most about 4 u |R| |x| <= 12 u M with u = 2^-53, and
-/// 16 u M is taken. Relative to the largest coordinate magnitude M (not the diameter: a translated
-/// mesh carries the rounding of its absolute coordinates):
-///   eta = (rho_d + 16 u) M,  rho_d = 0.5 * 10^(1 - d) for decimal input, 0 for binary doubles.
-/// The digits d are inferred from the coordinates themselves: `digits` = the most significant
-/// digits any coordinate's shortest round-trip decimal form needs (what %.{d}g must print for every
-/// coordinate to read back exactly). digits <= 16 is taken as a decimal export with
-/// assumed_digits = max(6, digits) (6 = printf's %g and iostream's default, the coarsest precision
-/// assumed: short hand-written coordinates such as integers are not taken as 1-digit roundings);
-/// 17 as binary doubles. Per input precision, with M the coordinate magnitude:
-///   17 digits (binary): eta = 1.8e-15 M;  15 digits: eta = 6.8e-15 M;  6 digits: eta = 5.0e-6 M;
-///   the largest violation accepted is bound(t, v) below, a few eta for well-shaped triangles.
-/// A dent smaller than what that rounding can produce cannot be told from it (a 6-digit file
-/// cannot show a 1e-6 dent of a mesh around the origin). Only the digits the file shows count: a
-/// mesh rounded to 6 digits, then rotated and written with 17, carries a 6-digit error that its
-/// digits no longer show; it is accepted only when the exact hull re-triangulation applies.
-struct InputRounding {
-  int digits = 0;               ///< most significant digits a coordinate needs to read back (1..17)
-  int assumed_digits = 17;      ///< precision assumed for the export; 17 = binary double
-  bool decimal = false;         ///< digits <= 16: taken as decimal rounding to assumed_digits
-  double magnitude = 0.0;       ///< M = max |coordinate|
-  double relative = 0.0;        ///< rho_d + 16 u
-  double per_coordinate = 0.0;  ///< eta = relative * M, bound on |rounded - true| per coordinate
-  std::string describe() const; ///< "coordinates rounded to 6 significant digits of magnitude 1.37"
-};
-
-/// The rounding model of a mesh's coordinates (finite coordinates required).
-InputRounding input_rounding(const TriangleMesh& mesh);
-
-/// Largest violation, relative to the mesh diameter, that is ever attributed to rounding, whatever
-/// the input precision: above it the input is too coarse to be called convex.
-inline constexpr double kMaxRoundingViolation = 1e-4;
 
 /// Checks, with CGAL exact predicates: finite coordinates; no zero-area triangle; closed
 /// 2-manifold; convex (every vertex on the inner side of, or on, every triangle's supporting
@@ -113,14 +78,6 @@ inline constexpr double kMaxRoundingViolation = 1e-4;
 ///    from an accurate determinant (exact rational arithmetic when double precision cannot
 ///    resolve it), so a refusal never reports a violation of 0; then why 1 and 2 do not apply.
 ValidationReport validate_closed_convex(TriangleMesh& mesh);
-
-/// Number of maximal planar facets: classes of triangles joined across shared edges whose four
-/// vertices are coplanar (a square split in two is one): exactly, or within the rounding of the
-/// input (each far vertex within bound(t, v) of the other triangle's plane, as in
-/// validate_closed_convex, and within kMaxRoundingViolation of the diameter), so that a rotated
-/// or rounded cube still has 6. Works on any mesh with finite coordinates (edges not shared by
-/// exactly two triangles simply join nothing).
-std::size_t count_planar_facets(const TriangleMesh& mesh);
 
 /// Reads ("builtin:NAME" -> make_builtin(NAME), else read_mesh) and validates; throws MeshError with the report's message when invalid.
 /// Warnings (notes) are appended to `notes` when given.

@@ -9,7 +9,7 @@
 //     given twice in one material (naming both lines), a miscased newmtl/Kd/Ke (`kd`, `KE`), an
 //     unknown statement. Read over, as they do not enter diffuse radiosity: Ka, Ks, Ns, Ni, d, Tr,
 //     Tf, illum, sharpness, bump, disp, decal, refl, the PBR statements Pr, Pm, Ps, Pc, Pcr, aniso,
-//     anisor, norm, and every texture map map_*; a note (ChannelScene::notes) names the line where
+//     anisor, norm, and every texture map map_*; a note (Scene::notes) names the line where
 //     that changes what the file means: map_Kd / map_Ke (the texture is not applied), d < 1 or
 //     Tr > 0 (read as opaque), and a miscased ignored statement (`ns`).
 //   - OFF + JSON sidecar (the OFF's path with extension .json, or an explicit path):
@@ -30,7 +30,7 @@
 // The mesh is read with geometry::read_mesh and validated with geometry::validate_closed_convex
 // (closed, convex, non-degenerate): an invalid mesh is a SceneFileError with the validator's reason.
 #include <panelrad/geometry/mesh.hpp>
-#include <panelrad/scene/channel_scene.hpp>
+#include <panelrad/scene/scene.hpp>
 #include <panelrad/support/error.hpp>
 #include <panelrad/geometry/text_file.hpp>
 
@@ -43,8 +43,9 @@ namespace panelrad {
 /// Loads SCENE (.obj with its MTL files, or .off with its JSON sidecar), by extension
 /// (case-insensitive). `materials_path` overrides the sidecar's path (OFF only; empty: default).
 /// `options` sets the size limit of every file read (mesh, MTL, JSON).
-/// Throws SceneFileError (never a partial scene).
-ChannelScene load_channel_scene(const std::string& path, const std::string& materials_path = "",
-                                const geometry::TextReadOptions& options = {});
+/// Returns a Scene with the file's channels, rho and E per facet, its notes and (OBJ) the
+/// material of each facet. Throws SceneFileError (never a partial scene).
+Scene load_channel_scene(const std::string& path, const std::string& materials_path = "",
+                         const geometry::TextReadOptions& options = {});
 
 }  // namespace panelrad

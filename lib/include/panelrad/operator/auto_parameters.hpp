@@ -16,24 +16,12 @@
 // lambda = l + 0.21. The discretization error halves per level (Table 1) while the far-field
 // error of a fixed (eta, M) does not, so the admissible settings tighten as lambda grows.
 //
-// The rule, from bench/results/sweep.csv (bench/sweep --full: 2 cores, Intel Xeon, shared with
-// other work, so timings are noisy; deviations are deterministic). Deviation of the fast method
-// with the exact near field from the dense exact solution, cube (error: 3.77e-3 at n = 3072,
-// 1.92e-3 at n = 12288, so the 5% margins are 1.9e-4 and 9.6e-5):
-//     (eta, M)      n = 3072   n = 12288   total s (12288)   peak MB (12288)
-//     (0.5, 4)      6.9e-4     6.9e-4      4.7               191     not within 5%
-//     (0.5, 6)      5.5e-5     5.5e-5      5.9               299     within 5%
-//     (0.3, 2)      3.6e-4     3.6e-4      5.0               223     not within 5%
-//     (0.3, 4)      3.2e-5     3.2e-5      7.3               440     within 5%
-//     (0.2, 2)      7.8e-5     8.5e-5      5.3               365     within 5%
-//     (0.1, 2)      4.2e-6     4.7e-6      11.4              1218    within 5%
-//     (0.4, 6)      1.3e-5     1.7e-5      0.9 (setup 0.52)  405     within 5% (prism 5120: 3.0e-5)
-//     (0.4, 8)      1.8e-6     2.3e-6      2.0 (setup 1.45)  ~520    within 5% (prism 5120: 4.0e-6)
-//   (the last two rows from a later, quieter run of bench/sweep --etas 0.5,0.4 --degrees 6,8)
-//   dense exact: 3.0 s at n = 3072, 51 s at n = 12288 (1215 MB).
-// The deviation of a fixed (eta, M) does not shrink with n (it is the Taylor remainder, ~eta^(M+1)
-// relative to |u|), while the discretization error halves per level: each setting is good up to
-// some level.
+// The measurements behind the rule (deviations of each (eta, M) from the dense exact solution on
+// the cube and the hexagonal prism, their costs, and the self-check values of each setting) are in
+// bench/results/auto_parameters.md, from bench/sweep (bench/results/sweep.csv). In short: the
+// deviation of a fixed (eta, M) does not shrink with n (it is the Taylor remainder, ~eta^(M+1)
+// relative to |u|), while the discretization error halves per level, so each setting is good up
+// to some level.
 //
 // The product's target. Those deviations are for the cube's smooth solution at rho_max 0.5; a
 // scene's solution may oscillate, and its equation may be worse conditioned. The product's error
@@ -55,10 +43,8 @@
 //
 // The rule. delta* halves per level and shrinks by A, so it is a level: the equivalent level of
 // the target, lambda_eff = lambda + log2 max(1, A(rho_max)), and delta* = 1.02e-3 2^-lambda_eff.
-// Self-check values on the cube (n-independent; n = 3072 and 12288): (0.5, 6) 1.5e-4 (worst
-// vector cos 7x + sin(5y) z; v = 1: 5.1e-5), (0.4, 6) 2.2e-5, (0.4, 8) 4.1e-6, (0.4, 10)
-// 3.2e-7, (0.4, 12) 3.8e-8; their deviations at n = 3072: 5.5e-5, 1.3e-5, 1.8e-6, 2.0e-7,
-// 3.1e-8. Each setting is used while its check is below delta*, i.e. lambda_eff below:
+// The self-check value of each setting does not depend on n (bench/results/auto_parameters.md);
+// each setting is used while its check is below delta*, i.e. lambda_eff below:
 //   n <= 768: dense, exact near field (whole solve < 0.1 s, no far-field error at all);
 //   lambda_eff < 2.5:  fast, exact, eta 0.5, M 6  (delta* 1.8e-4 at 2.5);
 //   lambda_eff < 5.5:  fast, exact, eta 0.4, M 6  (delta* 2.3e-5 at 5.5);
@@ -124,7 +110,8 @@ double self_check_threshold(const ProblemSize& size, double rho_max = kPaperCube
 /// Returns `options` unchanged when nothing is stricter (eta 0.1 and M >= 6).
 OperatorOptions tighten_parameters(const OperatorOptions& options);
 
-/// "dense, exact near field" / "fast, exact near field, eta 0.3, M 4".
+/// "dense, exact near field" / "fast, exact near field, eta 0.3, M 4": for printing (compare
+/// options with ==).
 std::string describe_parameters(const OperatorOptions& options);
 
 }  // namespace panelrad

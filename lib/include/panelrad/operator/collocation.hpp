@@ -13,10 +13,18 @@ namespace panelrad {
 
 class Collocation {
  public:
-  /// Refines the scene's mesh `level` times (n = 4^level n0) and evaluates rho, E (and u) at the
-  /// centroids, in parallel. Throws std::invalid_argument for bad rho/E, geometry::MeshError
-  /// for a size that does not fit in memory.
-  Collocation(const Scene& scene, int level);
+  /// Refines the scene's mesh `level` times (n = 4^level n0) and evaluates rho, E (and u) of
+  /// channel `channel` at the centroids, in parallel. Throws std::invalid_argument for bad rho/E
+  /// (Scene's rule, naming the lowest failing point), geometry::MeshError for a size that does
+  /// not fit in memory.
+  Collocation(const Scene& scene, int level, std::size_t channel = 0);
+
+  /// rho(P_i) and E(P_i) of one channel of `scene` (the scene this collocation was made from),
+  /// checked by the scene's rule; the same evaluation as the constructor's.
+  struct ChannelValues {
+    Eigen::VectorXd rho, E;
+  };
+  ChannelValues channel_values(const Scene& scene, std::size_t channel) const;
 
   const geometry::ClusterTree& tree() const { return *tree_; }
   std::shared_ptr<const geometry::ClusterTree> shared_tree() const { return tree_; }

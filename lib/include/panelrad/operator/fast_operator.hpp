@@ -7,6 +7,7 @@
 // An operator may own only the rows [begin, end) of K_n (FastOptions::rows): the coverings (42),
 // near field (43) and far coefficients (44)-(45) of those rows; the cluster moments (48) of a
 // product still need all of v.
+#include <panelrad/operator/clustering_parameters.hpp>
 #include <panelrad/operator/collocation.hpp>
 #include <panelrad/operator/far_field.hpp>
 #include <panelrad/support/large_buffer.hpp>
@@ -28,11 +29,12 @@ namespace panelrad {
 struct RowRange {
   geometry::Index begin = 0;
   geometry::Index end = -1;
+  bool operator==(const RowRange&) const = default;
 };
 
-struct FastOptions {
-  double eta = 0.2;   ///< admissibility parameter of (41), in (0, 1)
-  int degree = 2;     ///< Taylor degree M of (44), 0..12
+/// eta of (41) and M of (44) (ClusteringParameters), the near rule, the storage limits and the
+/// rows held.
+struct FastOptions : ClusteringParameters {
   NearFieldOptions near;
   /// Far-field coefficients are stored when they take at most this many bytes (0: automatic,
   /// half of the available memory); otherwise they are recomputed in every product.
@@ -200,11 +202,12 @@ class FastOperator final : public RadiosityOperator {
   // Near field (CSR over the rows held, row i at i - begin): element index and rho_i/pi Int G.
   // CSR rather than Eigen::SparseMatrix<double, RowMajor, StorageIndex>, measured on the cube,
   // eta 0.2 (near pairs 5.6 a row at n = 49152, 2.8 at 196608, 1.4 at 786432): a 64-bit
-  // StorageIndex takes 16 bytes a pair against 12 (10.5 MB against 8.3 MB at n = 196608) and its
-  // product was slower; a 32-bit one saves only the 4 bytes a row of the row starts, bounds the
-  // pairs by 2^31, and its product was not faster on one thread (50 near-field products at
-  // n = 196608: 0.096 s and 0.183 s against 0.085 s and 0.171 s in two runs; 0.039 s both at
-  // 49152). Here the near sum is fused with the far sum of the same row, < 1% of its time.
+  // StorageIndex takes 16 bytes a pair against 12 (10.5 MB against 8.3 MB at n = 196608), at no
+  // gain in speed; a 32-bit one saves only the 4 bytes a row of the row starts (0.8 MB), bounds
+  // the pairs by 2^31 and is not faster: 50 near-field products at n = 196608 took 0.063 s
+  // against 0.061 s on one thread, 0.033 s against 0.036 s on two (49152: 0.023 / 0.021 s,
+  // 0.012 / 0.013 s). Here the near sum is fused with the far sum of the same row; it is < 1% of
+  // a product (0.44 s at n = 196608, two threads).
   std::vector<std::int64_t> near_start_;
   std::vector<geometry::Index> near_col_;
   std::vector<double> near_val_;

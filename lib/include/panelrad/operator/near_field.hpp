@@ -16,6 +16,7 @@ struct NearFieldOptions {
   NearRule rule = NearRule::exact;
   int mu = 2;                        ///< section 4.2 subdivision levels (quadrature rule only)
   std::string basic_rule = "stroud7";  ///< basic rule of the composite scheme: stroud7, three_point...
+  bool operator==(const NearFieldOptions&) const = default;
 };
 
 /// "exact" / "quadrature"; throws std::invalid_argument otherwise.

@@ -1,9 +1,14 @@
 #pragma once
-// A polyhedral scene: a validated closed convex surface with reflectivity rho and emissivity E
-// (paper (1)), each given per facet, as a function of the point, or (E only) manufactured from a
-// known solution u by E = u - K u (the paper's test method, section 3).
+// A polyhedral scene: a validated closed convex surface with, in each of C channels (C = 1 for a
+// scalar problem; "R", "G", "B" for a colour one), the reflectivity rho and the emission E of the
+// radiosity equation (1), each given per facet or as a function of the point; or (scalar scenes)
+// E manufactured from a known solution u by E = u - K u (the paper's test method, section 3).
+//
+// Every value of rho and E passes one rule, reflectivity_problem / emission_problem: per-facet
+// data when it is set, functions where they are evaluated (each collocation point).
 #include <panelrad/geometry/mesh.hpp>
 
+#include <cstddef>
 #include <functional>
 #include <string>
 #include <vector>
@@ -16,11 +21,30 @@ using geometry::Vec3;
 /// A function on the surface: value at `point`, which lies in input facet `facet`.
 using SurfaceFunction = std::function<double(const Vec3& point, Index facet)>;
 
+/// The largest emission E accepted. The solution of the radiosity equation (7) satisfies
+/// |u| <= max E / (1 - max rho), and 1 / (1 - rho) reaches 2^53 ~ 9e15 for the largest double
+/// below 1, so u <= 9e115; its squares (residual norms) summed over 1e9 elements stay below
+/// 1e242, and its products with areas (at most 1e150: validation bounds lengths by 1e75) summed
+/// over 1e9 elements below 1e275: finite.
+inline constexpr double kMaxEmission = 1e100;
+/// The smallest non-zero emission E accepted: with areas down to 1e-150, products area * E stay
+/// above 1e-250 and squares of E above 1e-200, normal numbers (no underflow to subnormal or 0).
+/// Subnormal E (below DBL_MIN) have lost precision already and are refused with that reason.
+inline constexpr double kMinPositiveEmission = 1e-100;
+
+/// What is wrong with a reflectivity rho ("is outside [0, 1) ..."), or "" when it is accepted:
+/// finite, 0 <= rho < 1 (paper (7)), not subnormal.
+std::string reflectivity_problem(double rho);
+/// What is wrong with an emission E, or "" when it is accepted: finite, E = 0 or
+/// kMinPositiveEmission <= E <= kMaxEmission; a subnormal E is named as such.
+std::string emission_problem(double e);
+
 class Scene {
  public:
-  /// Takes a mesh that passed geometry::validate_closed_convex (outward oriented).
-  /// Reflectivity defaults to 0 and emissivity to 1 everywhere.
-  explicit Scene(geometry::TriangleMesh validated_mesh);
+  /// Takes a mesh that passed geometry::validate_closed_convex (outward oriented), with the
+  /// channels' names (at least one, distinct, non-empty). Reflectivity defaults to 0 and
+  /// emission to 1 everywhere in every channel.
+  explicit Scene(geometry::TriangleMesh validated_mesh, std::vector<std::string> channels = {"value"});
   /// Reads and validates a mesh file, or "builtin:NAME" (cube, prism:K, tetrahedron, octahedron).
   static Scene load(const std::string& path_or_builtin, std::vector<std::string>* notes = nullptr);
 
@@ -29,40 +53,68 @@ class Scene {
   /// Inner unit normal of input triangle t (points into the solid), (2).
   Vec3 triangle_inner_normal(Index t) const;
 
-  /// rho: 0 <= rho < 1 (paper (7)); anything else, NaN included, is a std::invalid_argument
-  /// naming the facet.
-  void set_reflectivity(double rho);
-  void set_reflectivity(std::vector<double> per_facet);
-  /// Checked where evaluated (each collocation point): out of range -> std::invalid_argument.
-  void set_reflectivity(SurfaceFunction rho);
+  std::size_t num_channels() const { return channels_.size(); }
+  const std::vector<std::string>& channels() const { return channels_; }
 
-  void set_emissivity(double e);
-  void set_emissivity(std::vector<double> per_facet);
-  void set_emissivity(SurfaceFunction e);
+  /// rho in `channel`: every value must pass reflectivity_problem, else std::invalid_argument
+  /// naming the facet, the channel and the rule. A function is checked where evaluated.
+  void set_reflectivity(double rho, std::size_t channel = 0);
+  void set_reflectivity(std::vector<double> per_facet, std::size_t channel = 0);
+  void set_reflectivity(SurfaceFunction rho, std::size_t channel = 0);
+
+  /// E in `channel`: every value must pass emission_problem (std::invalid_argument naming the
+  /// facet, the channel and the rule); a function is checked where evaluated. Replaces a
+  /// manufactured solution.
+  void set_emissivity(double e, std::size_t channel = 0);
+  void set_emissivity(std::vector<double> per_facet, std::size_t channel = 0);
+  void set_emissivity(SurfaceFunction e, std::size_t channel = 0);
   /// E := u - K u, with K u integrated to relative accuracy `rel_tol` over the exact surface.
+  /// Scalar scenes only (one channel; std::logic_error otherwise). E may then be negative
+  /// somewhere: it is derived, not data, and is not held to emission_problem.
   void set_manufactured_solution(SurfaceFunction u, double rel_tol = 1e-11);
 
-  /// rho(P) for P in facet; throws std::invalid_argument when outside [0,1) or not finite.
-  double reflectivity(const Vec3& P, Index facet) const;
-  /// Prescribed E(P); for a manufactured scene use manufactured_emissivity().
-  double emissivity(const Vec3& P, Index facet) const;
+  /// rho(P) in `channel` for P in facet; a function's value failing reflectivity_problem is a
+  /// std::invalid_argument naming the point, its facet, the channel and the rule.
+  double reflectivity(const Vec3& P, Index facet, std::size_t channel = 0) const;
+  /// Prescribed E(P) (checked like reflectivity); for a manufactured scene use
+  /// manufactured_emissivity().
+  double emissivity(const Vec3& P, Index facet, std::size_t channel = 0) const;
+  /// The per-facet values of `channel`, or an empty vector when given as a function.
+  const std::vector<double>& facet_reflectivity(std::size_t channel = 0) const;
+  const std::vector<double>& facet_emissivity(std::size_t channel = 0) const;
+
   bool has_manufactured_solution() const { return static_cast<bool>(solution_); }
   const SurfaceFunction& manufactured_solution() const { return solution_; }
   /// E(P) = u(P) - rho(P)/pi Int_S u(Q) G(P,Q) dS_Q for the manufactured solution u, (1).
   /// std::runtime_error naming the point, its facet and the triangle when the integral cannot
   /// be computed (u not finite, or not smooth enough to converge within the evaluation cap).
   double manufactured_emissivity(const Vec3& P, Index facet, const Vec3& nP) const;
-  /// Largest rho over the facets when given per facet (or constant), else NaN (unknown).
+  /// Largest rho over the facets of every channel when all are given per facet, else NaN
+  /// (unknown until evaluated).
   double max_reflectivity() const;
 
+  /// What loading did (merged vertices, re-orientation, hull re-triangulation, files read).
+  const std::vector<std::string>& notes() const { return notes_; }
+  void add_note(std::string note) { notes_.push_back(std::move(note)); }
+  /// Material name per facet (OBJ scenes), else empty.
+  const std::vector<std::string>& facet_material() const { return facet_material_; }
+  void set_facet_material(std::vector<std::string> per_facet);
+
  private:
+  struct Channel {
+    std::vector<double> rho_facet, e_facet;  // empty when the function is set
+    SurfaceFunction rho_fn, e_fn;
+  };
+  const Channel& channel(std::size_t c) const;
+  Channel& channel(std::size_t c);
+
   geometry::TriangleMesh mesh_;
-  std::vector<double> rho_facet_;
-  SurfaceFunction rho_fn_;
-  std::vector<double> e_facet_;
-  SurfaceFunction e_fn_;
+  std::vector<std::string> channels_;
+  std::vector<Channel> data_;
   SurfaceFunction solution_;
   double solution_tol_ = 1e-11;
+  std::vector<std::string> notes_;
+  std::vector<std::string> facet_material_;
 };
 
 /// The paper's cube example (31): unit cube, rho = 0.5 on y = 0, 1; 0.4 on z = 0, 1; 0.3 on

@@ -33,7 +33,15 @@ struct SolverOptions {
   std::function<void(int products, double error_estimate)> progress;
 };
 
+/// converged: the error estimate reached the tolerance. not_converged: the iteration stopped at
+/// max_iterations; u is its last iterate and error_estimate its bound (+inf when the iteration has
+/// none yet), and `message` says so (the text of the SolverError a caller may throw).
+enum class SolveStatus { converged, not_converged };
+const char* to_string(SolveStatus status);  ///< "converged" | "not converged"
+
 struct SolveResult {
+  SolveStatus status = SolveStatus::converged;
+  std::string message;             ///< not_converged: what was not reached, and how far it got
   Eigen::VectorXd u;
   std::string solver;              ///< the solver that ran
   std::string choice;              ///< why it was chosen (automatic choice), else empty
@@ -45,6 +53,11 @@ struct SolveResult {
   double seconds = 0;
 };
 
+/// Throws SolverError(result.message) when the result did not converge.
+void require_converged(const SolveResult& result);
+
+/// The solvers return their last iterate when they stop at max_iterations (status
+/// not_converged); an iterate that is not finite is a SolverError.
 /// Neumann iteration (34), u^(0) = 0: u^(k+1) = E + K u^(k).
 SolveResult solve_neumann(const RadiosityOperator& K, const Eigen::VectorXd& E, const SolverOptions& options);
 /// Restarted GMRES on (I - K) u = E; stops on the relative residual, mapped to an error bound

@@ -1,8 +1,9 @@
 #pragma once
 // The paper's cube example (section 3, (31); Table 1; Tables 2-4): solve on levels min..max and
 // report, per n, the error (51), times, iterations, the Neumann ratio (36) and peak memory.
-#include <panelrad/solve/memory_plan.hpp>
 #include <panelrad/operator/operator_factory.hpp>
+#include <panelrad/solve/memory_plan.hpp>
+#include <panelrad/solve/radiosity_solver.hpp>
 #include <panelrad/solve/solvers.hpp>
 
 #include <functional>
@@ -12,14 +13,18 @@
 
 namespace panelrad {
 
+/// Each level is one RadiositySolver on make_paper_cube_scene() with the rho of (31) folded into
+/// the operator's rows (fold_reflectivity), E manufactured from u, and the error (51) against u.
 struct CubeRunOptions {
   int min_level = 0;
   int max_level = 3;
+  /// The operator of every level: method dense or fast, near rule, eta, M.
   OperatorOptions op;
   /// solver.tolerance <= 0: tied to the discretization error per level (discretization_tolerance).
   SolverOptions solver;
   /// Fast method: when the operator's self-check exceeds self_check_threshold(), tighten the
-  /// parameters (tighten_parameters) and rebuild, until it passes or nothing is stricter.
+  /// parameters (tighten_parameters) and rebuild, until it passes or nothing is stricter
+  /// (RadiositySolverOptions::tighten_on_failed_check).
   bool tighten_on_failed_check = false;
 };
 
@@ -57,7 +62,8 @@ std::vector<LevelMemoryEstimate> check_paper_cube_fits(const CubeRunOptions& opt
 
 /// Runs the levels in order; `on_row` (if set) sees each row as soon as it is done. Every level
 /// is checked to fit (check_paper_cube_fits) before the first is solved; an allocation that
-/// fails anyway is a ResourceError naming the level, the stage and the size.
+/// fails anyway is a ResourceError naming the level, the stage and the size. A level whose
+/// iteration does not converge is a SolverError (require_converged).
 std::vector<CubeRow> run_paper_cube(const CubeRunOptions& options,
                                     const std::function<void(const CubeRow&)>& on_row = {});
 

@@ -1,6 +1,7 @@
 #pragma once
 // Quadrature rules on a triangle and the composite scheme of the paper's section 4.2.
 #include <panelrad/geometry/mesh.hpp>
+#include <panelrad/geometry/subdivision.hpp>
 
 #include <Eigen/Geometry>  // cross products
 
@@ -52,11 +53,11 @@ template <class F>
 double integrate_composite(const TriangleRule& rule, const Vec3& a, const Vec3& b, const Vec3& c,
                            int levels, F&& f) {
   if (levels <= 0) return integrate(rule, a, b, c, f);
-  const Vec3 ab = 0.5 * (a + b), bc = 0.5 * (b + c), ca = 0.5 * (c + a);
-  return integrate_composite(rule, a, ab, ca, levels - 1, f) +
-         integrate_composite(rule, ab, b, bc, levels - 1, f) +
-         integrate_composite(rule, ca, bc, c, levels - 1, f) +
-         integrate_composite(rule, ab, bc, ca, levels - 1, f);
+  const auto t = geometry::midpoint_subdivision(a, b, c);
+  return integrate_composite(rule, t[0][0], t[0][1], t[0][2], levels - 1, f) +
+         integrate_composite(rule, t[1][0], t[1][1], t[1][2], levels - 1, f) +
+         integrate_composite(rule, t[2][0], t[2][1], t[2][2], levels - 1, f) +
+         integrate_composite(rule, t[3][0], t[3][1], t[3][2], levels - 1, f);
 }
 
 /// Subdivision levels of the section 4.2 scheme: mu when 0 < dist <= h, mu-1 when h < dist <= 2h,

@@ -1,0 +1,153 @@
+#pragma once
+// Shared by the sources that validate a closed convex surface, each one rule of
+// validate_closed_convex (validation.hpp), which validation.cpp applies in order:
+//   mesh_degeneracy.cpp         structure, non-empty, finite, non-degenerate (area, enclosed volume)
+//   mesh_topology.cpp           closed, manifold, connected, orientable
+//   exact_convexity.cpp         convexity by exact predicates (O(F) proof, O(V F) side tests)
+//   plane_distance.cpp          the size of a violation: exact plane distances, the mesh diameter
+//   hull_retriangulation.cpp    rounded polygon faces re-triangulated from the exact convex hull
+//   convex_within_rounding.cpp  violations within the rounding of the input, or the refusal
+//   input_rounding.cpp          the rounding model and its bound(t, v)
+//   validation_messages.cpp     how a vertex, a triangle and a length are named in messages
+// Every geometric decision is a CGAL exact predicate (Epick: filtered double arithmetic with an
+// exact fallback), never a tolerance. Private to geometry/src: CGAL stays out of the installed
+// headers.
+#include <panelrad/geometry/mesh.hpp>
+#include <panelrad/geometry/validation.hpp>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <Eigen/Geometry>
+
+#include <array>
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace panelrad::geometry::validation_detail {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_3;
+using Tri = std::array<Index, 3>;
+using Sz = std::size_t;
+
+constexpr Index kNone = -1;
+
+inline Sz at(Index i) { return static_cast<Sz>(i); }
+
+// --- messages (validation_messages.cpp) ---------------------------------------------------------
+
+/// Shortest round-trip decimal form of x.
+std::string num(double x);
+/// x with 3 significant digits in scientific notation.
+std::string sci(double x);
+/// A positive length relative to the diameter, never printed as 0.
+std::string relative(double dist, double diam);
+
+/// Names vertices and triangles of `mesh` with their indices and coordinates.
+struct Describe {
+  const TriangleMesh& mesh;
+  std::string point(Index v) const;
+  std::string vertex(Index v) const;
+  std::string triangle(Index t) const;
+};
+
+/// A broken rule and the message naming where.
+struct Failure {
+  std::string rule;
+  std::string message;
+};
+
+// --- degeneracy and finiteness (mesh_degeneracy.cpp) --------------------------------------------
+
+/// Indices and facet ids in range (a mesh built in code), at least one triangle, finite coordinates.
+std::optional<Failure> check_well_formed(const TriangleMesh& mesh);
+/// No zero-area triangle (exact), and every length and area within what double precision measures.
+std::optional<Failure> check_measurable(const TriangleMesh& mesh, const std::vector<Point>& pts);
+/// Four vertices spanning a tetrahedron (exact), or nothing when all vertices are coplanar.
+std::optional<std::array<Index, 4>> spanning_tetrahedron(const std::vector<Point>& p);
+/// Sign of the enclosed volume of a consistently oriented closed surface (+1: counter-clockwise
+/// from outside), exact.
+int volume_sign(const TriangleMesh& mesh, const Vec3& origin);
+
+// --- topology (mesh_topology.cpp) ---------------------------------------------------------------
+
+/// Per triangle t and slot s (edge tr[s] -> tr[s+1]): the neighbouring triangle across that edge.
+struct Adjacency {
+  std::vector<Index> neighbour;  // 3 * num_triangles
+};
+
+/// Closedness (every edge in exactly two triangles) and edge-manifoldness; fills the adjacency.
+std::optional<Failure> build_adjacency(const TriangleMesh& mesh, Adjacency& adj);
+/// Closed 2-manifold: closed, every vertex used with a single fan around it, no two vertices at
+/// the same point; fills the adjacency.
+std::optional<Failure> check_closed_manifold(const TriangleMesh& mesh, Adjacency& adj);
+/// One connected, orientable piece: flip[t] = 1 for the triangles to reverse for a consistent
+/// orientation (triangle 0 kept).
+std::optional<Failure> consistent_orientation(const TriangleMesh& mesh, const Adjacency& adj,
+                                              std::vector<signed char>& flip);
+
+// --- exact convexity (exact_convexity.cpp) ------------------------------------------------------
+
+/// The vertices as exact-predicate points.
+std::vector<Point> exact_points(const TriangleMesh& mesh);
+
+struct Geometry {
+  const std::vector<Point>& p;
+  std::array<Index, 4> witness;  // spans a tetrahedron: not all four lie on any one plane
+
+  CGAL::Orientation side(const Tri& t, Index v) const {
+    return CGAL::orientation(p[at(t[0])], p[at(t[1])], p[at(t[2])], p[at(v)]);
+  }
+  /// Orientation of the first witness off the plane of t: NEGATIVE when t faces away from it.
+  CGAL::Orientation facing(const Tri& t) const {
+    for (Index w : witness) {
+      const CGAL::Orientation o = side(t, w);
+      if (o != CGAL::COPLANAR) return o;
+    }
+    return CGAL::COPLANAR;  // unreachable: the witnesses are not coplanar
+  }
+};
+
+/// An interior point: the mean of four vertices spanning a fat tetrahedron.
+Vec3 interior_point(const TriangleMesh& mesh, const std::vector<Point>& p, const std::array<Index, 4>& fallback);
+/// Sound O(F) proof of convexity; false when it cannot prove it.
+bool proven_convex(const TriangleMesh& mesh, const Adjacency& adj, const Geometry& g, const Vec3& inside);
+/// Triangles with some vertex strictly outside their plane (exact; empty iff convex).
+std::vector<Index> unsupported_triangles(const TriangleMesh& mesh, const Adjacency& adj, const Geometry& g,
+                                         const Vec3& inside);
+/// The surface winds once around `inside`, which is strictly on the inner side of every plane.
+bool winds_once_around(const TriangleMesh& mesh, const Geometry& g, const Vec3& inside);
+
+// --- distances (plane_distance.cpp) -------------------------------------------------------------
+
+/// The largest distance between two vertices (the bounding-box diagonal above 5000 vertices).
+double diameter(const TriangleMesh& mesh);
+/// An upper bound on |distance of v from the plane of (a, b, c)|; infinity when double precision
+/// cannot bound it.
+double plane_distance_upper(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& v);
+/// Signed distance of v from the plane of (a, b, c), accurate to a relative 1e-4 or better.
+double plane_distance(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& v);
+
+// --- the rounding bound (input_rounding.cpp) ----------------------------------------------------
+
+/// bound(t, v) of validation.hpp; negative when the triangle is too small for it.
+double rounding_bound(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& v, double eta);
+
+// --- convexity up to rounding (hull_retriangulation.cpp, convex_within_rounding.cpp) ------------
+
+/// Step 1 of validate_closed_convex: re-triangulates the polygon faces from the exact convex hull
+/// when that proves the mesh convex (replacing mesh, with a note in report); else the reason why not.
+std::optional<std::string> retriangulate_convex_from_hull(TriangleMesh& mesh, const std::vector<Point>& pts,
+                                                          const std::vector<Index>& bad, const Geometry& g,
+                                                          const Vec3& inside, double diam,
+                                                          ValidationReport& report);
+/// Steps 2 and 3 of validate_closed_convex: accepts the mesh as convex within the rounding of its
+/// input (report.convex_within_rounding, with a note), or returns the refusal, whose message ends
+/// with hull_reason and why the rounding does not explain the violation.
+std::optional<Failure> accept_within_rounding(const TriangleMesh& mesh, const std::vector<Index>& bad,
+                                              const Geometry& g, const Vec3& inside, double diam,
+                                              const std::string& hull_reason, ValidationReport& report);
+
+}  // namespace panelrad::geometry::validation_detail

@@ -1,0 +1,175 @@
+#pragma once
+// The solver object: the radiosity equation (1), u - K u = E, on one scene, by centroid
+// collocation (section 3) with the dense matrix (33) or the fast product of section 4 (K. Atkinson
+// and D. Chien, "A fast matrix-vector multiplication method for solving the radiosity equation",
+// Adv. Comput. Math. 12 (2000)). Stateful, in the style of Eigen's iterative solvers: the
+// constructor does the setup once, then solve() runs the iteration (32) for as many right-hand
+// sides as wanted.
+//
+// Setup (the constructor), in this order:
+//   1. the level L: options.level, or the largest with n = n0 4^L <= options.max_elements;
+//   2. the operator's parameters: automatic: choose_parameters(problem_size, 0.05, rho_max), rho_max
+//      the largest reflectivity over all channels (the conditioning 1 / (1 - rho_max) of every
+//      channel's equation, (11)); dense or fast: options.manual;
+//   3. the memory plan (memory_plan.hpp): a level that cannot fit is refused (ResourceError,
+//      with the estimate) before anything is built;
+//   4. the collocation (22): the elements of the level-L refinement, rho and E of channel 0 at
+//      their centroids (and u for a manufactured scene);
+//   5. the operator: the irradiance operator H, (H v)_i = 1/pi Int_S v G(P_i,Q) dS_Q, so that
+//      K_c = diag(rho_c) H in every channel c (33); or, with options.fold_reflectivity, K_n itself
+//      with the rho of channel 0 in its rows (the fast method then skips the rows with rho = 0);
+//   6. the fast method: FastOperator::self_check against self_check_threshold; automatic
+//      parameters (or manual ones with tighten_on_failed_check) are tightened (tighten_parameters) and the operator rebuilt until the check
+//      passes or nothing is stricter (a warning then);
+//   7. the iteration's tolerance: options.solver.tolerance, or (<= 0) discretization_tolerance.
+// solve(): (I - diag(rho) H) u = E by options.solver.kind (automatic: choose_solver(max rho)).
+#include <panelrad/operator/collocation.hpp>
+#include <panelrad/operator/fast_operator.hpp>
+#include <panelrad/operator/linear_operator.hpp>
+#include <panelrad/operator/operator_factory.hpp>
+#include <panelrad/scene/scene.hpp>
+#include <panelrad/solve/memory_plan.hpp>
+#include <panelrad/solve/solvers.hpp>
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace panelrad {
+
+/// K v = diag(row_scale) (H v): a channel's operator K_n = diag(rho_c) H, (33).
+class ScaledOperator final : public RadiosityOperator {
+ public:
+  /// Keeps a reference to H: H must outlive this operator.
+  ScaledOperator(const RadiosityOperator& H, Eigen::VectorXd row_scale);
+  geometry::Index size() const override { return H_.size(); }
+  void apply(const Eigen::VectorXd& v, Eigen::VectorXd& y) const override;
+  std::string name() const override { return H_.name(); }
+  std::size_t bytes() const override { return H_.bytes() + static_cast<std::size_t>(scale_.size()) * sizeof(double); }
+
+ private:
+  const RadiosityOperator& H_;
+  Eigen::VectorXd scale_;
+};
+
+struct RadiositySolverOptions {
+  int level = -1;                        ///< refinement level; < 0: the largest with n <= max_elements
+  geometry::Index max_elements = 20000;  ///< used when level < 0 (level 0 at least)
+  /// automatic: the measured rule of auto_parameters.hpp, self-checked and tightened; dense or
+  /// fast: `manual`.
+  OperatorMethod method = OperatorMethod::automatic;
+  /// Near rule, eta and M when method is dense or fast (manual.method is replaced by `method`).
+  OperatorOptions manual;
+  /// Fast method with manual parameters: tighten them after a failed self-check, as automatic
+  /// parameters always are (step 6).
+  bool tighten_on_failed_check = false;
+  Visibility visibility = Visibility::unoccluded;  ///< passed to make_operator
+  /// The iteration: kind (automatic: choose_solver), tolerance (<= 0: discretization_tolerance(h,
+  /// diam)), max_iterations, GMRES restart; its per-product callback is used when `progress` is
+  /// empty.
+  SolverOptions solver = [] {
+    SolverOptions s;
+    s.tolerance = 0;  // tied to the discretization error
+    return s;
+  }();
+  /// K_n = diag(rho) H built into the operator with the rho of channel 0 (the paper's cube
+  /// driver: rows with rho = 0 skipped). solve() then only takes that rho: another is a
+  /// std::invalid_argument.
+  bool fold_reflectivity = false;
+  /// Bytes per element the caller will keep beside the solver (results), for the memory plan.
+  std::size_t result_bytes_per_element = 0;
+  /// Stage lines (subdivision, operator stages, self-check, each product) as they happen.
+  std::function<void(const std::string&)> progress;
+};
+
+/// One solve of (32).
+struct ChannelSolve {
+  SolveStatus status = SolveStatus::converged;
+  std::string message;         ///< not converged: the SolverError text (require_converged)
+  Eigen::VectorXd u;           ///< u_n at the collocation points; the last iterate when not converged
+  std::string solver;          ///< what ran, with the automatic choice's reason
+  int iterations = 0;          ///< products with K_n
+  double error_estimate = 0;   ///< the iteration's bound on ||u_n - u||_inf (+inf: none yet)
+  double residual = 0;         ///< ||E - (I - K) u||_inf / ||E||_inf
+  double convergence_ratio = 0;  ///< Neumann: (36)
+  double seconds = 0;
+  bool converged() const { return status == SolveStatus::converged; }
+};
+
+/// What the setup did.
+struct RadiositySolverInfo {
+  int level = 0;
+  geometry::Index n = 0;
+  double mesh_size = 0, diameter = 0;  ///< h (longest element edge) and the surface's diameter
+  double conditioning_reflectivity = 0;  ///< rho_max over all channels (step 2)
+  OperatorOptions parameters;          ///< the operator that was built (after tightening)
+  std::optional<FastSelfCheck> self_check;  ///< fast method: the last operator's check
+  double self_check_threshold = 0;     ///< fast method: self_check_threshold(size, rho_max)
+  int tightened = 0;                   ///< times automatic parameters were tightened
+  double tolerance = 0;                ///< the iteration's relative tolerance (step 7)
+  double subdivision_s = 0, operator_s = 0;  ///< step 4 (with rho, E, u); steps 5-6
+  std::size_t operator_bytes = 0;
+  LevelMemoryEstimate memory;          ///< step 3's estimate
+  std::vector<std::string> warnings;   ///< e.g. a self-check above its threshold with nothing stricter
+};
+
+class RadiositySolver {
+ public:
+  /// Setup (header). Keeps a reference to `scene`: it must outlive the solver. Throws
+  /// std::invalid_argument (bad options or data, naming them), ResourceError (a size that does not
+  /// fit, before any work, or an allocation that failed, naming the stage).
+  explicit RadiositySolver(const Scene& scene, const RadiositySolverOptions& options = {});
+  /// A temporary scene would not outlive the solver.
+  RadiositySolver(Scene&&, const RadiositySolverOptions& = {}) = delete;
+
+  const RadiositySolverOptions& options() const { return options_; }
+  const RadiositySolverInfo& info() const { return info_; }
+  int level() const { return info_.level; }
+  geometry::Index n() const { return info_.n; }
+  const OperatorOptions& parameters() const { return info_.parameters; }
+  const std::optional<FastSelfCheck>& self_check() const { return info_.self_check; }
+  double tolerance() const { return info_.tolerance; }
+  const Collocation& collocation() const { return *collocation_; }
+  /// H, or K_n with fold_reflectivity.
+  const RadiosityOperator& op() const { return *op_; }
+  std::size_t operator_bytes() const { return info_.operator_bytes; }
+
+  /// rho_c(P_i), E_c(P_i) of the scene's channel c (checked by the scene's rule).
+  Collocation::ChannelValues channel_values(std::size_t channel) const;
+  /// H u: the light arriving at P_i (the product without rho). std::logic_error with
+  /// fold_reflectivity (the operator has no H).
+  Eigen::VectorXd irradiance(const Eigen::VectorXd& u) const;
+
+  /// The scene's channel (its name in the progress lines).
+  ChannelSolve solve(std::size_t channel) const;
+  /// Any data at the collocation points: rho (each passing reflectivity_problem) and E (finite).
+  ChannelSolve solve(const Eigen::VectorXd& rho, const Eigen::VectorXd& E) const;
+
+ private:
+  void setup();
+  void choose_parameters_and_plan();
+  void discretize();
+  void build_operator();
+  std::unique_ptr<RadiosityOperator> make(const Collocation& rows, const OperatorOptions& op);
+  ChannelSolve solve_values(const Eigen::VectorXd& rho, const Eigen::VectorXd& E, const std::string& label) const;
+  void say(const std::string& line) const;
+
+  const Scene& scene_;
+  RadiositySolverOptions options_;
+  RadiositySolverInfo info_;
+  std::optional<Collocation> collocation_;
+  std::unique_ptr<RadiosityOperator> op_;
+  // Where the setup is, so that an allocation failure can name the stage and its estimate.
+  mutable std::string stage_;
+  mutable std::size_t stage_bytes_ = 0;
+};
+
+/// The largest level L with n0 4^L <= max_elements (0 when even level 0 is larger).
+int level_for_max_elements(geometry::Index n0, geometry::Index max_elements);
+
+}  // namespace panelrad

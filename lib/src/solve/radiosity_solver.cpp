@@ -1,0 +1,250 @@
+#include <panelrad/operator/auto_parameters.hpp>
+#include <panelrad/solve/radiosity_solver.hpp>
+#include <panelrad/support/error.hpp>
+#include <panelrad/support/resources.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <stdexcept>
+
+namespace panelrad {
+
+ScaledOperator::ScaledOperator(const RadiosityOperator& H, Eigen::VectorXd row_scale)
+    : H_(H), scale_(std::move(row_scale)) {
+  if (scale_.size() != H_.size()) throw std::invalid_argument("ScaledOperator: scale size differs from n");
+}
+
+void ScaledOperator::apply(const Eigen::VectorXd& v, Eigen::VectorXd& y) const {
+  H_.apply(v, y);
+  y.array() *= scale_.array();  // (K v)_i = rho_i (H v)_i, (33)
+}
+
+int level_for_max_elements(geometry::Index n0, geometry::Index max_elements) {
+  if (n0 <= 0) throw std::invalid_argument("level_for_max_elements: n0 must be positive");
+  if (max_elements <= 0) throw std::invalid_argument("max elements must be positive");
+  int level = 0;
+  std::int64_t n = n0;
+  while (n * 4 <= max_elements) {
+    n *= 4;
+    ++level;
+  }
+  return level;
+}
+
+namespace {
+
+std::string fmt(const char* format, double a, double b = 0) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, format, a, b);
+  return buf;
+}
+
+std::string number(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+}  // namespace
+
+RadiositySolver::RadiositySolver(const Scene& scene, const RadiositySolverOptions& options)
+    : scene_(scene), options_(options) {
+  try {
+    setup();
+  } catch (const std::bad_alloc&) {
+    throw ResourceError(out_of_memory_message(stage_, static_cast<double>(info_.memory.n), stage_bytes_));
+  }
+}
+
+void RadiositySolver::say(const std::string& line) const {
+  if (options_.progress) options_.progress(line);
+}
+
+void RadiositySolver::setup() {
+  stage_ = "reading the options";
+  const Index n0 = static_cast<Index>(scene_.mesh().triangles.size());
+  info_.level = options_.level >= 0 ? options_.level : level_for_max_elements(n0, options_.max_elements);
+  if (info_.level > 15) throw std::invalid_argument("levels: " + std::to_string(info_.level) + " is more than 15");
+  if (options_.fold_reflectivity && scene_.num_channels() != 1)
+    throw std::invalid_argument("fold_reflectivity: the operator takes one channel's rho, the scene has " +
+                                std::to_string(scene_.num_channels()));
+  info_.conditioning_reflectivity = scene_.max_reflectivity();  // NaN: rho given as a function
+  choose_parameters_and_plan();
+  discretize();
+  if (std::isnan(info_.conditioning_reflectivity)) {
+    // rho given as a function: its largest value is known once evaluated at the points (22).
+    double rho_max = collocation_->reflectivity().maxCoeff();
+    for (std::size_t c = 1; c < scene_.num_channels(); ++c) rho_max = std::max(rho_max, channel_values(c).rho.maxCoeff());
+    info_.conditioning_reflectivity = rho_max;
+    choose_parameters_and_plan();
+  }
+  build_operator();
+  info_.tolerance = options_.solver.tolerance > 0 ? options_.solver.tolerance
+                                                  : discretization_tolerance(info_.mesh_size, info_.diameter);
+}
+
+// Steps 2-3: the parameters first, so that a size that cannot fit is refused before any work.
+// With rho given as a function its maximum is not known before the collocation: the plan is then
+// made for rho_max 0 (the loosest automatic parameters: a lower bound) and made again after it.
+void RadiositySolver::choose_parameters_and_plan() {
+  const double rho_max = std::isnan(info_.conditioning_reflectivity) ? 0.0 : info_.conditioning_reflectivity;
+  if (options_.method == OperatorMethod::automatic) {
+    info_.parameters = choose_parameters(problem_size(scene_.mesh(), info_.level), 0.05, rho_max);
+  } else {
+    info_.parameters = options_.manual;
+    info_.parameters.method = options_.method;
+  }
+  LevelMemoryOptions memory;
+  // fold: the collocation's rho, E (and u); else also the unit-weight copy's.
+  memory.collocation_vectors = options_.fold_reflectivity ? 3 : 4;
+  memory.field_bytes_per_element = options_.result_bytes_per_element;
+  SolverOptions planned_solver;
+  planned_solver.kind = options_.solver.kind;
+  info_.memory = estimate_level_memory(scene_.mesh(), info_.level, info_.parameters, planned_solver, rho_max, memory);
+  const std::string& source = scene_.mesh().source;
+  refuse_levels_that_cannot_fit({info_.memory}, (source.empty() ? std::string("scene") : source) + ": ");
+}
+
+// Step 4: subdivision, collocation points (22), rho and E of channel 0 (and u) at them.
+void RadiositySolver::discretize() {
+  const Index n0 = static_cast<Index>(scene_.mesh().triangles.size());
+  say("subdividing " + std::to_string(n0) + " triangles " + std::to_string(info_.level) + " times: n = " +
+      std::to_string(static_cast<long long>(n0) << (2 * info_.level)));
+  stage_ = "subdividing: the cluster tree (40) and the collocation points (22)";
+  stage_bytes_ = info_.memory.tree + info_.memory.collocation / 2;
+  Stopwatch clock;
+  collocation_.emplace(scene_, info_.level);
+  info_.n = collocation_->size();
+  info_.mesh_size = collocation_->tree().mesh_size();
+  info_.diameter = collocation_->tree().diameter();
+  info_.subdivision_s = clock.seconds();
+  say(fmt("subdivision done in %.2f s", info_.subdivision_s));
+}
+
+std::unique_ptr<RadiosityOperator> RadiositySolver::make(const Collocation& rows, const OperatorOptions& op) {
+  stage_ = "building the operator (" + describe_parameters(op) + ")";
+  stage_bytes_ = info_.memory.op;
+  // The operator's own stages (near field, far field) are named by its progress lines.
+  return make_operator(rows, op, options_.visibility, [this](const std::string& line) {
+    stage_ = "building the operator: " + line;
+    say(line);
+  });
+}
+
+// Steps 5-6: the operator, its self-check, and (automatic parameters) the one tighten loop.
+void RadiositySolver::build_operator() {
+  Stopwatch clock;
+  const std::optional<Collocation> unit =
+      options_.fold_reflectivity ? std::nullopt
+                                 : std::optional<Collocation>(collocation_->with_row_weights(Eigen::VectorXd::Ones(info_.n)));
+  const Collocation& rows = unit ? *unit : *collocation_;
+  OperatorOptions& op = info_.parameters;
+  op_ = make(rows, op);
+  if (const auto* fast = dynamic_cast<const FastOperator*>(op_.get())) {
+    say("fast operator: checking the product on sampled exact rows");
+    info_.self_check_threshold =
+        self_check_threshold(problem_size(scene_.mesh(), info_.level), info_.conditioning_reflectivity);
+    info_.self_check = fast->self_check();
+    const bool tighten = options_.method == OperatorMethod::automatic || options_.tighten_on_failed_check;
+    while (tighten && !(info_.self_check->relative_error <= info_.self_check_threshold)) {
+      const OperatorOptions stricter = tighten_parameters(op);
+      if (stricter == op) break;  // nothing stricter
+      say(fmt("self-check %.2e above %.2e: tightening", info_.self_check->relative_error, info_.self_check_threshold));
+      op = stricter;
+      ++info_.tightened;
+      op_.reset();  // free the looser operator before building the stricter one
+      op_ = make(rows, op);
+      info_.self_check = dynamic_cast<const FastOperator&>(*op_).self_check();
+    }
+    if (!(info_.self_check->relative_error <= info_.self_check_threshold))
+      info_.warnings.push_back(fmt("the fast product's measured relative error %.2e is above the accepted %.2e ",
+                                   info_.self_check->relative_error, info_.self_check_threshold) +
+                               (tighten ? "(nothing stricter to try)" : "(manual parameters, not tightened)") +
+                               "; the answer may be less accurate than the discretization");
+  }
+  info_.operator_bytes = op_->bytes();
+  info_.operator_s = clock.seconds();
+  say(fmt("operator ready in %.2f s: ", info_.operator_s) + describe_parameters(op) + ", " +
+      format_bytes(static_cast<double>(info_.operator_bytes)));
+}
+
+Collocation::ChannelValues RadiositySolver::channel_values(std::size_t channel) const {
+  if (channel >= scene_.num_channels())
+    throw std::invalid_argument("channel " + std::to_string(channel) + ": the scene has " +
+                                std::to_string(scene_.num_channels()));
+  if (channel == 0) return {collocation_->reflectivity(), collocation_->emissivity()};
+  return collocation_->channel_values(scene_, channel);
+}
+
+Eigen::VectorXd RadiositySolver::irradiance(const Eigen::VectorXd& u) const {
+  if (options_.fold_reflectivity)
+    throw std::logic_error("irradiance: the operator holds K_n = diag(rho) H (fold_reflectivity), not H");
+  if (u.size() != info_.n) throw std::invalid_argument("irradiance: vector size differs from n");
+  Eigen::VectorXd Hu;
+  op_->apply(u, Hu);
+  return Hu;
+}
+
+ChannelSolve RadiositySolver::solve(std::size_t channel) const {
+  const Collocation::ChannelValues v = channel_values(channel);
+  return solve_values(v.rho, v.E, "channel " + scene_.channels()[channel]);
+}
+
+ChannelSolve RadiositySolver::solve(const Eigen::VectorXd& rho, const Eigen::VectorXd& E) const {
+  if (rho.size() != info_.n || E.size() != info_.n)
+    throw std::invalid_argument("solve: rho and E need one value per collocation point (n = " +
+                                std::to_string(info_.n) + ")");
+  for (Index i = 0; i < info_.n; ++i) {
+    const std::string problem = reflectivity_problem(rho[i]);
+    if (!problem.empty())
+      throw std::invalid_argument("solve: rho = " + number(rho[i]) + " at collocation point " + std::to_string(i) +
+                                  " " + problem);
+    if (!std::isfinite(E[i]))
+      throw std::invalid_argument("solve: E = " + number(E[i]) + " at collocation point " + std::to_string(i) +
+                                  " is not a finite number");
+  }
+  return solve_values(rho, E, "data");
+}
+
+ChannelSolve RadiositySolver::solve_values(const Eigen::VectorXd& rho, const Eigen::VectorXd& E,
+                                           const std::string& label) const {
+  if (options_.fold_reflectivity && !(rho.array() == collocation_->reflectivity().array()).all())
+    throw std::invalid_argument("solve: the operator holds K_n with channel 0's rho (fold_reflectivity); "
+                                "another rho needs a solver without fold_reflectivity");
+  const double max_rho = rho.maxCoeff();
+  SolverOptions solver = options_.solver;
+  solver.tolerance = info_.tolerance;
+  if (options_.progress)
+    solver.progress = [&](int products, double estimate) {
+      say(label + fmt(": product %.0f, error estimate %.2e", products, estimate));
+    };
+  const SolverKind kind = solver.kind == SolverKind::automatic ? choose_solver(max_rho) : solver.kind;
+  stage_ = "solving " + label + " (32) with " + to_string(kind);
+  stage_bytes_ = info_.memory.solver;
+  SolveResult r;
+  try {
+    if (options_.fold_reflectivity) {
+      r = panelrad::solve(*op_, E, solver, max_rho);
+    } else {
+      const ScaledOperator K(*op_, rho);
+      r = panelrad::solve(K, E, solver, max_rho);
+    }
+  } catch (const std::bad_alloc&) {
+    throw ResourceError(out_of_memory_message(stage_, static_cast<double>(info_.n), stage_bytes_));
+  }
+  ChannelSolve out;
+  out.status = r.status;
+  out.message = std::move(r.message);
+  out.u = std::move(r.u);
+  out.solver = r.choice.empty() ? r.solver : r.choice;
+  out.iterations = r.iterations;
+  out.error_estimate = r.error_estimate;
+  out.residual = r.residual;
+  out.convergence_ratio = r.convergence_ratio;
+  out.seconds = r.seconds;
+  return out;
+}
+
+}  // namespace panelrad

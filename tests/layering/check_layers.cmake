@@ -1,0 +1,66 @@
+# Checks that every #include <panelrad/...> points down the layers, never up:
+#   geometry -> quadrature -> lib: support -> scene -> operator -> solve -> io -> paper -> cli,
+#   examples, bench; and that nothing outside the tests includes the test-only oracles.
+# Run: cmake -DSOURCE_DIR=<project> -P check_layers.cmake (fails with the offending file and line).
+cmake_minimum_required(VERSION 3.20)
+if(NOT SOURCE_DIR)
+  message(FATAL_ERROR "check_layers: set -DSOURCE_DIR")
+endif()
+
+# folder (relative to SOURCE_DIR) -> header folders under <panelrad/...> it may include
+set(layer_folders
+  geometry/include geometry/src geometry/oracles quadrature
+  lib/include/panelrad/support lib/src/support lib/include/panelrad/scene lib/src/scene
+  lib/include/panelrad/operator lib/src/operator lib/include/panelrad/solve lib/src/solve
+  lib/include/panelrad/io lib/src/io paper cli examples bench)
+set(allowed_geometry/include geometry)
+set(allowed_geometry/src geometry)
+set(allowed_geometry/oracles geometry geometry/oracles)
+set(allowed_quadrature geometry quadrature)
+set(allowed_lib/include/panelrad/support geometry quadrature support)
+set(allowed_lib/src/support ${allowed_lib/include/panelrad/support})
+set(allowed_lib/include/panelrad/scene ${allowed_lib/src/support} scene)
+set(allowed_lib/src/scene ${allowed_lib/include/panelrad/scene})
+set(allowed_lib/include/panelrad/operator ${allowed_lib/src/scene} operator)
+set(allowed_lib/src/operator ${allowed_lib/include/panelrad/operator})
+set(allowed_lib/include/panelrad/solve ${allowed_lib/src/operator} solve)
+set(allowed_lib/src/solve ${allowed_lib/include/panelrad/solve})
+set(allowed_lib/include/panelrad/io ${allowed_lib/src/solve} io)
+set(allowed_lib/src/io ${allowed_lib/include/panelrad/io})
+set(allowed_paper ${allowed_lib/src/io} paper)
+set(allowed_cli ${allowed_paper})
+set(allowed_examples ${allowed_lib/src/io})
+set(allowed_bench ${allowed_paper})
+
+set(failures "")
+set(checked 0)
+foreach(folder IN LISTS layer_folders)
+  file(GLOB_RECURSE sources "${SOURCE_DIR}/${folder}/*.cpp" "${SOURCE_DIR}/${folder}/*.hpp")
+  foreach(src IN LISTS sources)
+    math(EXPR checked "${checked} + 1")
+    file(STRINGS "${src}" lines REGEX "^[ \t]*#[ \t]*include[ \t]*<panelrad/")
+    foreach(line IN LISTS lines)
+      string(REGEX REPLACE "^[ \t]*#[ \t]*include[ \t]*<panelrad/([^>]*)>.*$" "\\1" target "${line}")
+      # the umbrella header <panelrad/panelrad.hpp> sits at the top of lib: only for users above lib
+      if(target STREQUAL "panelrad.hpp")
+        set(target_folder "io")
+      else()
+        string(REGEX REPLACE "/[^/]*$" "" target_folder "${target}")
+      endif()
+      if(target MATCHES "^geometry/oracles/")
+        set(target_folder "geometry/oracles")
+      endif()
+      if(NOT target_folder IN_LIST allowed_${folder})
+        file(RELATIVE_PATH rel "${SOURCE_DIR}" "${src}")
+        string(APPEND failures "  ${rel}: #include <panelrad/${target}> reaches up (allowed from ${folder}: ${allowed_${folder}})\n")
+      endif()
+    endforeach()
+  endforeach()
+endforeach()
+if(checked LESS 50)
+  message(FATAL_ERROR "check_layers: only ${checked} files found under ${SOURCE_DIR}: wrong SOURCE_DIR?")
+endif()
+if(failures)
+  message(FATAL_ERROR "check_layers: includes against the layers:\n${failures}")
+endif()
+message(STATUS "check_layers: ${checked} files, every include points down the layers")
