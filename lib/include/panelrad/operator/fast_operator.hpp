@@ -204,8 +204,8 @@ class FastOperator final : public RadiosityOperator {
   // eta 0.2 (near pairs 5.6 a row at n = 49152, 2.8 at 196608, 1.4 at 786432): a 64-bit
   // StorageIndex takes 16 bytes a pair against 12 (10.5 MB against 8.3 MB at n = 196608), at no
   // gain in speed; a 32-bit one saves only the 4 bytes a row of the row starts (0.8 MB), bounds
-  // the pairs by 2^31 and is not faster: 50 near-field products at n = 196608 took 0.063 s
-  // against 0.061 s on one thread, 0.033 s against 0.036 s on two (49152: 0.023 / 0.021 s,
+  // the pairs by 2^31, and is slower on one thread: 50 near-field products at n = 196608 took
+  // 0.063 s against 0.061 s on one thread, 0.033 s against 0.036 s on two (49152: 0.023 / 0.021 s,
   // 0.012 / 0.013 s). Here the near sum is fused with the far sum of the same row; it is < 1% of
   // a product (0.44 s at n = 196608, two threads).
   std::vector<std::int64_t> near_start_;
