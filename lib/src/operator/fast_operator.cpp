@@ -12,6 +12,7 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 namespace panelrad {
 
@@ -51,43 +52,98 @@ void cover(const geometry::ClusterTree& tree, const Vec3& P, Index fP, double et
   }
 }
 
+constexpr Index kRowBlock = 256;  // rows per block of the parallel covering traversal
+
+/// [begin, end) of `rows`, end = -1 read as n; std::invalid_argument unless 0 <= begin <= end <= n.
+std::pair<Index, Index> resolve_rows(const RowRange& rows, Index n) {
+  const Index end = rows.end == -1 ? n : rows.end;
+  if (rows.begin < 0 || rows.begin > end || end > n)
+    throw std::invalid_argument("fast method: row range [" + std::to_string(rows.begin) + ", " +
+                                std::to_string(rows.end) + ") is not within the rows [0, n) = [0, " +
+                                std::to_string(n) + ") (need 0 <= begin <= end <= n; end -1 means n)");
+  return {rows.begin, end};
+}
+
 }  // namespace
+
+// The coverings (42) of a block of consecutive rows: per row the counts, and the near-field
+// element ids with their integrals (43) and the far-field cluster ids, in row order.
+struct FastOperator::RowBlock {
+  std::vector<std::int64_t> near_count, far_count;
+  std::vector<Index> near_col, far_cluster;
+  std::vector<double> near_val;
+};
 
 FastOperator::FastOperator(const Collocation& collocation, const FastOptions& options)
     : tree_(collocation.shared_tree()), options_(options) {
+  check_options();
+  n_ = tree_->num_elements();
+  std::tie(row_begin_, row_end_) = resolve_rows(options_.rows, n_);
+  terms_ = num_taylor_terms(options_.degree);
+  refuse_beyond_memory(collocation);
+  Stopwatch clock;
+  report_stage("fast operator, n = " + std::to_string(n_) + rows_note() + ": cluster frames and element moments");
+  setup_cluster_frames();
+  setup_element_data(collocation);
+  stats_.geometry_s = clock.seconds();
+  clock.restart();
+  {
+    char eta[32];
+    std::snprintf(eta, sizeof eta, "%g", options_.eta);
+    report_stage("fast operator: minimal admissible coverings (42) and near field (43), eta " + std::string(eta) +
+                 ", M " + std::to_string(options_.degree));
+  }
+  std::vector<RowBlock> blocks = cover_rows(collocation);
+  store_coverings(blocks);
+  stats_.covering_s = clock.seconds();  // covering (42) and near field (43)
+  clock.restart();
+  report_stage("fast operator: far field (44)-(45), " + std::to_string(stats_.far_pairs) + " (point, cluster) pairs, " +
+               (stats_.far_stored ? "coefficients stored" : "coefficients recomputed per product (memory)"));
+  setup_far_coefficients();
+  stats_.far_s = clock.seconds();
+  stats_.bytes = held_bytes();
+}
+
+void FastOperator::check_options() {
   if (!(options_.eta > 0 && options_.eta < 1))
     throw std::invalid_argument("fast method: eta = " + std::to_string(options_.eta) + " is outside (0, 1)");
   if (options_.degree < 0 || options_.degree > 12)
     throw std::invalid_argument("fast method: degree M = " + std::to_string(options_.degree) + " is outside [0, 12]");
+}
+
+// ", rows [begin, end)" when only some rows are held; empty for the whole operator.
+std::string FastOperator::rows_note() const {
+  if (holds_all_rows()) return "";
+  return ", rows [" + std::to_string(row_begin_) + ", " + std::to_string(row_end_) + ")";
+}
+
+void FastOperator::report_stage(const std::string& what) const {
+  if (options_.progress) options_.progress(what);
+}
+
+// Refuses what will not fit, before any large allocation.
+void FastOperator::refuse_beyond_memory(const Collocation& collocation) const {
+  const MemoryEstimate est = estimate_memory(collocation, options_.eta, options_.degree, rows());
+  const std::size_t peak = est.bytes + est.list_bytes;
+  const std::size_t limit = options_.memory_limit ? options_.memory_limit : available_memory_bytes();
+  if (peak > limit)
+    throw ResourceError("fast operator for n = " + std::to_string(n_) + rows_note() + " needs about " +
+                        format_bytes(static_cast<double>(peak)) + " during setup (" +
+                        format_bytes(static_cast<double>(est.list_bytes)) + " of near/far lists for about " +
+                        std::to_string(est.far_pairs) + " far pairs), more than the " +
+                        format_bytes(static_cast<double>(limit)) + " available; use fewer levels or a larger eta");
+}
+
+// Cluster ids, plane frames about A(tau) and the offsets of each A(tau) in its parent's frame
+// (the shift of centre of (48)).
+void FastOperator::setup_cluster_frames() {
   const geometry::ClusterTree& tree = *tree_;
   const int L = tree.finest_level();
-  const int T = terms_ = num_taylor_terms(options_.degree);
-  const int M = options_.degree;
-  n_ = tree.num_elements();
-  {  // refuse what will not fit, before any large allocation
-    const MemoryEstimate est = estimate_memory(collocation, options_.eta, options_.degree);
-    const std::size_t peak = est.bytes + est.list_bytes;
-    const std::size_t limit = options_.memory_limit ? options_.memory_limit : available_memory_bytes();
-    if (peak > limit)
-      throw ResourceError("fast operator for n = " + std::to_string(n_) + " needs about " +
-                          format_bytes(static_cast<double>(peak)) + " during setup (" +
-                          format_bytes(static_cast<double>(est.list_bytes)) + " of near/far lists for about " +
-                          std::to_string(est.far_pairs) + " far pairs), more than the " +
-                          format_bytes(static_cast<double>(limit)) +
-                          " available; use fewer levels or a larger eta");
-  }
-  const auto stage = [&](const std::string& what) {
-    if (options_.progress) options_.progress(what);
-  };
-  Stopwatch clock;
-  stage("fast operator, n = " + std::to_string(n_) + ": cluster frames and element moments");
-
   // The far field works in the length unit 2^k ~ diameter of the surface: G dS is invariant under
   // scaling (G ~ length^-2), and scaling by a power of two is exact, so the Taylor coefficients
   // (~ |P-A|^-(2+p+q)) and moments (~ R^(2+p+q)) stay far from overflow and underflow at any
   // scene size that validation accepts (lengths 1e-75 .. 1e75), up to M = 12.
   unit_scale_ = std::ldexp(1.0, -std::ilogb(tree.diameter()));
-  // Cluster ids, plane frames about A(tau), offsets to the parent, element moments (48).
   level_offset_.resize(static_cast<std::size_t>(L) + 2);
   level_offset_[0] = 0;
   for (int l = 0; l <= L; ++l) level_offset_[static_cast<std::size_t>(l) + 1] = level_offset_[static_cast<std::size_t>(l)] + tree.level_size(l);
@@ -106,13 +162,21 @@ FastOperator::FastOperator(const Collocation& collocation, const FastOptions& op
             frame_[static_cast<std::size_t>(cluster_id(l - 1, k / 4))].local(unit_scale_ * c.centre);
     }
   }
-  element_moments_.resize(static_cast<std::size_t>(n_) * static_cast<std::size_t>(T));
+}
+
+// Element moments (48) Int_Delta x^p y^q dS about A(Delta), and rho(P_i), P_i, n_P of every
+// element (all n: the moments of a product and the self-check's vectors need the whole surface).
+void FastOperator::setup_element_data(const Collocation& collocation) {
+  const geometry::ClusterTree& tree = *tree_;
+  const int L = tree.finest_level();
+  const std::size_t T = static_cast<std::size_t>(terms_);
+  element_moments_.resize(static_cast<std::size_t>(n_) * T);
 #pragma omp parallel for schedule(static)
   for (Index e = 0; e < n_; ++e) {
     const Cluster& c = tree.cluster(L, e);
     triangle_moments(frame_[static_cast<std::size_t>(cluster_id(L, e))], unit_scale_ * c.vertex[0],
-                     unit_scale_ * c.vertex[1], unit_scale_ * c.vertex[2], M,
-                     &element_moments_[static_cast<std::size_t>(e) * static_cast<std::size_t>(T)]);
+                     unit_scale_ * c.vertex[1], unit_scale_ * c.vertex[2], options_.degree,
+                     &element_moments_[static_cast<std::size_t>(e) * T]);
   }
   rho_.resize(static_cast<std::size_t>(n_));
   point_.resize(static_cast<std::size_t>(n_));
@@ -122,88 +186,83 @@ FastOperator::FastOperator(const Collocation& collocation, const FastOptions& op
     point_[static_cast<std::size_t>(i)] = collocation.collocation_point(i);
     normal_[static_cast<std::size_t>(i)] = collocation.normal(i);
   }
+}
 
-  stats_.geometry_s = clock.seconds();
-  clock.restart();
-  {
-    char eta[32];
-    std::snprintf(eta, sizeof eta, "%g", options_.eta);
-    stage("fast operator: minimal admissible coverings (42) and near field (43), eta " + std::string(eta) + ", M " +
-          std::to_string(M));
-  }
-  // One traversal per row, in blocks of rows: each block keeps its covering (and the near-field
-  // integrals, (43) first sum) locally; blocks are then concatenated in row order, so the result
-  // is identical for any thread count.
+// One traversal per row held, in blocks of kRowBlock rows: each block keeps its covering (42)
+// (and the near-field integrals, (43) first sum) locally, so the result is identical for any
+// thread count once the blocks are concatenated in row order (store_coverings).
+std::vector<FastOperator::RowBlock> FastOperator::cover_rows(const Collocation& collocation) {
+  const geometry::ClusterTree& tree = *tree_;
+  const int L = tree.finest_level();
   const NearFieldIntegrator integrate_near(options_.near, tree.mesh_size());
-  constexpr Index kBlock = 256;
-  const Index num_blocks = (n_ + kBlock - 1) / kBlock;
-  struct Block {
-    std::vector<std::int64_t> near_count, far_count;
-    std::vector<Index> near_col, far_cluster;
-    std::vector<double> near_val;
-  };
-  std::vector<Block> blocks(static_cast<std::size_t>(num_blocks));
+  const Index num_blocks = (row_end_ - row_begin_ + kRowBlock - 1) / kRowBlock;
+  std::vector<RowBlock> blocks(static_cast<std::size_t>(num_blocks));
   std::size_t skipped = 0, skipped_rows = 0;
   bool out_of_memory = false;
-  {
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : skipped, skipped_rows)
-    for (Index b = 0; b < num_blocks; ++b) try {
-      Block& blk = blocks[static_cast<std::size_t>(b)];
-      const Index first = b * kBlock, last = std::min(n_, first + kBlock);
-      blk.near_count.assign(static_cast<std::size_t>(last - first), 0);
-      blk.far_count.assign(static_cast<std::size_t>(last - first), 0);
-      for (Index i = first; i < last; ++i) {
-        const double rho = rho_[static_cast<std::size_t>(i)];
-        if (rho == 0) {  // the row is zero: not computed
-          ++skipped_rows;
-          continue;
-        }
-        const Vec3& P = point_[static_cast<std::size_t>(i)];
-        const Vec3& nP = normal_[static_cast<std::size_t>(i)];
-        std::int64_t nn = 0, nf = 0;
-        cover(
-            tree, P, collocation.facet(i), options_.eta,
-            [&](int l, Index k) {
-              blk.far_cluster.push_back(cluster_id(l, k));
-              ++nf;
-            },
-            [&](Index e) {
-              blk.near_col.push_back(e);
-              blk.near_val.push_back(rho * integrate_near(P, nP, tree.cluster(L, e)));  // (43), first sum
-              ++nn;
-            },
-            [&]() { ++skipped; });
-        blk.near_count[static_cast<std::size_t>(i - first)] = nn;
-        blk.far_count[static_cast<std::size_t>(i - first)] = nf;
+  for (Index b = 0; b < num_blocks; ++b) try {
+    RowBlock& blk = blocks[static_cast<std::size_t>(b)];
+    const Index first = row_begin_ + b * kRowBlock, last = std::min(row_end_, first + kRowBlock);
+    blk.near_count.assign(static_cast<std::size_t>(last - first), 0);
+    blk.far_count.assign(static_cast<std::size_t>(last - first), 0);
+    for (Index i = first; i < last; ++i) {
+      const double rho = rho_[static_cast<std::size_t>(i)];
+      if (rho == 0) {  // the row is zero: not computed
+        ++skipped_rows;
+        continue;
       }
-    } catch (const std::bad_alloc&) {
-#pragma omp atomic write
-      out_of_memory = true;
+      const Vec3& P = point_[static_cast<std::size_t>(i)];
+      const Vec3& nP = normal_[static_cast<std::size_t>(i)];
+      std::int64_t nn = 0, nf = 0;
+      cover(
+          tree, P, collocation.facet(i), options_.eta,
+          [&](int l, Index k) {
+            blk.far_cluster.push_back(cluster_id(l, k));
+            ++nf;
+          },
+          [&](Index e) {
+            blk.near_col.push_back(e);
+            blk.near_val.push_back(rho * integrate_near(P, nP, tree.cluster(L, e)));  // (43), first sum
+            ++nn;
+          },
+          [&]() { ++skipped; });
+      blk.near_count[static_cast<std::size_t>(i - first)] = nn;
+      blk.far_count[static_cast<std::size_t>(i - first)] = nf;
     }
+  } catch (const std::bad_alloc&) {
+#pragma omp atomic write
+    out_of_memory = true;
   }
   if (out_of_memory) {
     blocks.clear();
-    throw ResourceError("fast operator for n = " + std::to_string(n_) +
+    throw ResourceError("fast operator for n = " + std::to_string(n_) + rows_note() +
                         ": out of memory while building the near and far field lists (" + describe_available_memory() +
                         "); use fewer levels or a larger eta");
   }
-  near_start_.assign(static_cast<std::size_t>(n_) + 1, 0);
-  far_start_.assign(static_cast<std::size_t>(n_) + 1, 0);
+  stats_.skipped_coplanar = skipped;
+  stats_.skipped_rows = skipped_rows;
+  return blocks;
+}
+
+// Concatenates the blocks' coverings into the CSR arrays (row starts, then the lists, releasing
+// each block as it is copied) and decides whether the far coefficients are stored: only when
+// they fit, else they are recomputed in each product.
+void FastOperator::store_coverings(std::vector<RowBlock>& blocks) {
+  const std::size_t rows = static_cast<std::size_t>(row_end_ - row_begin_);
+  const Index num_blocks = static_cast<Index>(blocks.size());
+  near_start_.assign(rows + 1, 0);
+  far_start_.assign(rows + 1, 0);
   for (Index b = 0; b < num_blocks; ++b) {
-    const Block& blk = blocks[static_cast<std::size_t>(b)];
+    const RowBlock& blk = blocks[static_cast<std::size_t>(b)];
     for (std::size_t r = 0; r < blk.near_count.size(); ++r) {
-      const std::size_t i = static_cast<std::size_t>(b * kBlock) + r;
+      const std::size_t i = static_cast<std::size_t>(b * kRowBlock) + r;
       near_start_[i + 1] = near_start_[i] + blk.near_count[r];
       far_start_[i + 1] = far_start_[i] + blk.far_count[r];
     }
   }
   stats_.near_pairs = static_cast<std::size_t>(near_start_.back());
   stats_.far_pairs = static_cast<std::size_t>(far_start_.back());
-  stats_.skipped_coplanar = skipped;
-  stats_.skipped_rows = skipped_rows;
-
-  // Memory: far coefficients are stored only when they fit; else recomputed in each product.
-  const std::size_t far_coef_bytes = stats_.far_pairs * static_cast<std::size_t>(T) * sizeof(double);
+  const std::size_t far_coef_bytes = stats_.far_pairs * static_cast<std::size_t>(terms_) * sizeof(double);
   const std::size_t avail = available_memory_bytes();
   const std::size_t limit = options_.far_storage_limit ? options_.far_storage_limit : avail / 2;
   stats_.far_stored = far_coef_bytes <= limit;
@@ -212,50 +271,57 @@ FastOperator::FastOperator(const Collocation& collocation, const FastOptions& op
   far_cluster_.resize(stats_.far_pairs);
 #pragma omp parallel for schedule(static)
   for (Index b = 0; b < num_blocks; ++b) {
-    Block& blk = blocks[static_cast<std::size_t>(b)];
-    const std::size_t i0 = static_cast<std::size_t>(b * kBlock);
+    RowBlock& blk = blocks[static_cast<std::size_t>(b)];
+    const std::size_t i0 = static_cast<std::size_t>(b * kRowBlock);
     std::copy(blk.near_col.begin(), blk.near_col.end(), near_col_.begin() + near_start_[i0]);
     std::copy(blk.near_val.begin(), blk.near_val.end(), near_val_.begin() + near_start_[i0]);
     std::copy(blk.far_cluster.begin(), blk.far_cluster.end(), far_cluster_.begin() + far_start_[i0]);
-    blk = Block{};  // release as we go
+    blk = RowBlock{};  // release as we go
   }
-  stats_.covering_s = clock.seconds();  // covering (42) and near field (43)
-  clock.restart();
-  stage("fast operator: far field (44)-(45), " + std::to_string(stats_.far_pairs) + " (point, cluster) pairs, " +
-        (stats_.far_stored ? "coefficients stored" : "coefficients recomputed per product (memory)"));
+}
+
+// The rho-scaled Taylor coefficients (44)-(45) of every far pair, when they are to be stored.
+void FastOperator::setup_far_coefficients() {
+  const std::size_t T = static_cast<std::size_t>(terms_);
   if (stats_.far_stored) {
     try {
-      far_coef_ = LargeBuffer(stats_.far_pairs * static_cast<std::size_t>(T));
+      far_coef_ = LargeBuffer(stats_.far_pairs * T);
     } catch (const std::bad_alloc&) {
       stats_.far_stored = false;  // could not have the memory after all: recompute per product
     }
   }
-  if (stats_.far_stored) {
+  if (!stats_.far_stored) return;
+  const Index rows = row_end_ - row_begin_;
 #pragma omp parallel for schedule(dynamic, 64)
-    for (Index i = 0; i < n_; ++i)
-      for (std::int64_t j = far_start_[static_cast<std::size_t>(i)]; j < far_start_[static_cast<std::size_t>(i) + 1]; ++j)
-        far_coefficients(i, far_cluster_[static_cast<std::size_t>(j)], &far_coef_[static_cast<std::size_t>(j) * static_cast<std::size_t>(T)]);
-  }
-  stats_.far_s = clock.seconds();
-  stats_.bytes = near_col_.size() * sizeof(Index) + near_val_.size() * sizeof(double) +
-                 far_cluster_.size() * sizeof(Index) + far_coef_.bytes() +
-                 (near_start_.size() + far_start_.size()) * sizeof(std::int64_t) + frame_.size() * sizeof(PlaneFrame) +
-                 to_parent_.size() * sizeof(to_parent_[0]) + element_moments_.size() * sizeof(double) +
-                 static_cast<std::size_t>(num_clusters) * static_cast<std::size_t>(T) * sizeof(double) /* moments per product */;
+  for (Index r = 0; r < rows; ++r)
+    for (std::int64_t j = far_start_[static_cast<std::size_t>(r)]; j < far_start_[static_cast<std::size_t>(r) + 1]; ++j)
+      far_coefficients(row_begin_ + r, far_cluster_[static_cast<std::size_t>(j)], &far_coef_[static_cast<std::size_t>(j) * T]);
 }
 
-FastOperator::MemoryEstimate FastOperator::estimate_memory(const Collocation& collocation, double eta, int degree) {
+std::size_t FastOperator::held_bytes() const {
+  const std::size_t num_clusters = static_cast<std::size_t>(level_offset_.back());
+  return near_col_.size() * sizeof(Index) + near_val_.size() * sizeof(double) + far_cluster_.size() * sizeof(Index) +
+         far_coef_.bytes() + (near_start_.size() + far_start_.size()) * sizeof(std::int64_t) +
+         frame_.size() * sizeof(PlaneFrame) + to_parent_.size() * sizeof(to_parent_[0]) +
+         element_moments_.size() * sizeof(double) +
+         num_clusters * static_cast<std::size_t>(terms_) * sizeof(double) /* moments per product */;
+}
+
+FastOperator::MemoryEstimate FastOperator::estimate_memory(const Collocation& collocation, double eta, int degree,
+                                                           const RowRange& row_range) {
   const geometry::ClusterTree& tree = collocation.tree();
   const Index n = tree.num_elements();
+  const auto [begin, end] = resolve_rows(row_range, n);
+  const Index m = end - begin;
   const int L = tree.finest_level();
   const std::size_t T = static_cast<std::size_t>(num_taylor_terms(degree));
   std::size_t clusters = 0;
   for (int l = 0; l <= L; ++l) clusters += static_cast<std::size_t>(tree.level_size(l));
-  const Index samples = std::min<Index>(n, 256);
+  const Index samples = std::min<Index>(m, 256);
   std::size_t near = 0, far = 0, sampled = 0, rows = 0;
-  for (Index i = 0; i < n; ++i) rows += collocation.reflectivity()[i] != 0;
+  for (Index i = begin; i < end; ++i) rows += collocation.reflectivity()[i] != 0;
   for (Index s = 0; s < samples; ++s) {
-    const Index i = static_cast<Index>((static_cast<std::int64_t>(s) * n + n / 2) / samples);
+    const Index i = begin + static_cast<Index>((static_cast<std::int64_t>(s) * m + m / 2) / samples);
     if (collocation.reflectivity()[i] == 0) continue;
     ++sampled;
     cover(tree, collocation.collocation_point(i), collocation.facet(i), eta, [&](int, Index) { ++far; },
@@ -267,16 +333,20 @@ FastOperator::MemoryEstimate FastOperator::estimate_memory(const Collocation& co
   e.far_pairs = static_cast<std::size_t>(static_cast<double>(far) * per_row * static_cast<double>(rows));
   e.list_bytes = near_pairs * (sizeof(Index) + sizeof(double)) + e.far_pairs * sizeof(Index);
   e.coefficient_bytes = e.far_pairs * T * sizeof(double);
-  e.bytes = e.list_bytes + fixed_bytes(static_cast<std::size_t>(n), clusters, degree);
+  e.bytes = e.list_bytes + fixed_bytes(static_cast<std::size_t>(n), clusters, degree, static_cast<std::size_t>(m));
   return e;
 }
 
 std::size_t FastOperator::fixed_bytes(std::size_t n, std::size_t clusters, int degree) {
+  return fixed_bytes(n, clusters, degree, n);
+}
+
+std::size_t FastOperator::fixed_bytes(std::size_t n, std::size_t clusters, int degree, std::size_t rows) {
   const std::size_t T = static_cast<std::size_t>(num_taylor_terms(degree));
   // Per cluster: frame, offset to the parent, moments per product; per element: its moments,
-  // rho, P, n_P, and the near/far row starts.
+  // rho, P, n_P; per row held: the near/far row starts.
   return clusters * (sizeof(PlaneFrame) + 2 * sizeof(double) + T * sizeof(double)) +
-         n * (T * sizeof(double) + 7 * sizeof(double) + 2 * sizeof(std::int64_t));
+         n * (T * sizeof(double) + 7 * sizeof(double)) + rows * 2 * sizeof(std::int64_t);
 }
 
 std::pair<int, Index> FastOperator::cluster_of_id(Index id) const {
@@ -322,14 +392,15 @@ void FastOperator::compute_moments(const Eigen::VectorXd& v, std::vector<double>
   }
 }
 
-// Row i of the fast product (43) from the cluster moments of v: near field plus far field (47).
+// Row i (held) of the fast product (43) from the cluster moments of v: near field plus far field (47).
 double FastOperator::apply_row(Index i, const Eigen::VectorXd& v, const std::vector<double>& moments,
                                double* scratch) const {
   const std::size_t T = static_cast<std::size_t>(terms_);
+  const std::size_t r = static_cast<std::size_t>(i - row_begin_);
   double sum = 0;
-  for (std::int64_t j = near_start_[static_cast<std::size_t>(i)]; j < near_start_[static_cast<std::size_t>(i) + 1]; ++j)
+  for (std::int64_t j = near_start_[r]; j < near_start_[r + 1]; ++j)
     sum += near_val_[static_cast<std::size_t>(j)] * v[near_col_[static_cast<std::size_t>(j)]];
-  for (std::int64_t j = far_start_[static_cast<std::size_t>(i)]; j < far_start_[static_cast<std::size_t>(i) + 1]; ++j) {
+  for (std::int64_t j = far_start_[r]; j < far_start_[r + 1]; ++j) {
     const Index cl = far_cluster_[static_cast<std::size_t>(j)];
     const double* coef;
     if (stats_.far_stored) {
@@ -345,15 +416,25 @@ double FastOperator::apply_row(Index i, const Eigen::VectorXd& v, const std::vec
 }
 
 void FastOperator::apply(const Eigen::VectorXd& v, Eigen::VectorXd& y) const {
+  if (!holds_all_rows())
+    throw std::logic_error("FastOperator::apply: the operator holds only rows [" + std::to_string(row_begin_) + ", " +
+                           std::to_string(row_end_) + ") of n = " + std::to_string(n_) +
+                           "; apply_rows gives those rows");
   if (v.size() != n_) throw std::invalid_argument("FastOperator::apply: vector size differs from n");
+  apply_rows(v, y);
+}
+
+void FastOperator::apply_rows(const Eigen::VectorXd& v, Eigen::VectorXd& y_block) const {
+  if (v.size() != n_) throw std::invalid_argument("FastOperator::apply_rows: vector size differs from n");
   std::vector<double> moments;
   compute_moments(v, moments);
-  y.resize(n_);
+  const Index rows = row_end_ - row_begin_;
+  y_block.resize(rows);
 #pragma omp parallel
   {
     std::vector<double> scratch(static_cast<std::size_t>(terms_));
 #pragma omp for schedule(dynamic, 256)
-    for (Index i = 0; i < n_; ++i) y[i] = apply_row(i, v, moments, scratch.data());
+    for (Index r = 0; r < rows; ++r) y_block[r] = apply_row(row_begin_ + r, v, moments, scratch.data());
   }
 }
 
@@ -398,44 +479,48 @@ std::vector<std::pair<std::string, Eigen::VectorXd>> FastOperator::self_check_ve
   return out;
 }
 
-// Exact entries of a row are cheap (one closed-form form factor per element, O(n)): compare the
-// fast rows with them for every test vector (FastSelfCheck in the header).
-FastSelfCheck FastOperator::self_check(int samples) const {
-  FastSelfCheck check;
-  if (n_ == 0) return check;
-  Stopwatch clock;
+// The rows of the self-check (FastSelfCheck in the header), among the rows held: every row, or
+// half evenly spaced and half at corners of the input triangles; ascending.
+std::vector<Index> FastOperator::self_check_rows(int samples) const {
   const geometry::ClusterTree& tree = *tree_;
   const auto elements = tree.elements();
   const int L = tree.finest_level();
-  // The rows: every row, or half evenly spaced and half at corners of the input triangles.
+  const Index m = row_end_ - row_begin_;
   std::vector<Index> rows;
-  if (samples >= n_) {
-    rows.resize(static_cast<std::size_t>(n_));
-    for (Index i = 0; i < n_; ++i) rows[static_cast<std::size_t>(i)] = i;
-  } else {
-    samples = std::max(samples, 1);
-    const Index even = std::max(1, samples - samples / 2);
-    for (Index k = 0; k < even; ++k)
-      rows.push_back(static_cast<Index>((static_cast<std::int64_t>(k) * n_) / even + (n_ / even) / 2));
-    std::vector<Index> corners;  // elements sharing a vertex with their input triangle (level-0 ancestor)
-    for (Index e = 0; e < n_; ++e) {
-      const Cluster& root = tree.cluster(0, e >> (2 * L));
-      const Cluster& c = elements[static_cast<std::size_t>(e)];
-      bool corner = false;
-      for (const Vec3& p : c.vertex)
-        for (const Vec3& q : root.vertex) corner = corner || p == q;
-      if (corner) corners.push_back(e);
-    }
-    const Index at_corners = std::min<Index>(samples - even, static_cast<Index>(corners.size()));
-    for (Index k = 0; k < at_corners; ++k)
-      rows.push_back(corners[static_cast<std::size_t>((static_cast<std::int64_t>(k) * static_cast<std::int64_t>(corners.size())) / at_corners)]);
-    std::sort(rows.begin(), rows.end());
-    rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+  if (samples >= m) {
+    rows.resize(static_cast<std::size_t>(m));
+    for (Index r = 0; r < m; ++r) rows[static_cast<std::size_t>(r)] = row_begin_ + r;
+    return rows;
   }
-  const auto vectors = self_check_vectors();
+  samples = std::max(samples, 1);
+  const Index even = std::max(1, samples - samples / 2);
+  for (Index k = 0; k < even; ++k)
+    rows.push_back(row_begin_ + static_cast<Index>((static_cast<std::int64_t>(k) * m) / even + (m / even) / 2));
+  std::vector<Index> corners;  // elements sharing a vertex with their input triangle (level-0 ancestor)
+  for (Index e = row_begin_; e < row_end_; ++e) {
+    const Cluster& root = tree.cluster(0, e >> (2 * L));
+    const Cluster& c = elements[static_cast<std::size_t>(e)];
+    bool corner = false;
+    for (const Vec3& p : c.vertex)
+      for (const Vec3& q : root.vertex) corner = corner || p == q;
+    if (corner) corners.push_back(e);
+  }
+  const Index at_corners = std::min<Index>(samples - even, static_cast<Index>(corners.size()));
+  for (Index k = 0; k < at_corners; ++k)
+    rows.push_back(corners[static_cast<std::size_t>((static_cast<std::int64_t>(k) * static_cast<std::int64_t>(corners.size())) / at_corners)]);
+  std::sort(rows.begin(), rows.end());
+  rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+  return rows;
+}
+
+// Per sampled row r and vector k (index r * V + k): (K v_k)_r and (K |v_k|)_r from the exact
+// closed-form entries (one form factor per element, O(n) per row), and the fast row.
+void FastOperator::self_check_products(const std::vector<Index>& rows,
+                                       const std::vector<std::pair<std::string, Eigen::VectorXd>>& vectors,
+                                       const std::vector<std::vector<double>>& moments, std::vector<double>& exact,
+                                       std::vector<double>& scale, std::vector<double>& fast) const {
+  const auto elements = tree_->elements();
   const std::size_t V = vectors.size(), S = rows.size();
-  std::vector<std::vector<double>> moments(V);
-  for (std::size_t k = 0; k < V; ++k) compute_moments(vectors[k].second, moments[k]);
   // v_k(j) and |v_k(j)| interleaved per element: the exact rows' inner loop reads them in order.
   std::vector<double> values(static_cast<std::size_t>(n_) * 2 * V);
   for (Index j = 0; j < n_; ++j)
@@ -443,8 +528,9 @@ FastSelfCheck FastOperator::self_check(int samples) const {
       values[(static_cast<std::size_t>(j) * V + k) * 2] = vectors[k].second[j];
       values[(static_cast<std::size_t>(j) * V + k) * 2 + 1] = std::abs(vectors[k].second[j]);
     }
-  // Per sampled row and vector: (K v)_k exact, (K |v|)_k exact (the scale), (K_fast v)_k.
-  std::vector<double> exact(S * V, 0.0), scale(S * V, 0.0), fast(S * V, 0.0);
+  exact.assign(S * V, 0.0);
+  scale.assign(S * V, 0.0);
+  fast.assign(S * V, 0.0);
 #pragma omp parallel
   {
     std::vector<double> scratch(static_cast<std::size_t>(terms_));
@@ -472,6 +558,21 @@ FastSelfCheck FastOperator::self_check(int samples) const {
       for (std::size_t k = 0; k < V; ++k) fast[r * V + k] = apply_row(i, vectors[k].second, moments[k], scratch.data());
     }
   }
+}
+
+// Exact entries of a row are cheap (one closed-form form factor per element, O(n)): compare the
+// fast rows with them for every test vector (FastSelfCheck in the header).
+FastSelfCheck FastOperator::self_check(int samples) const {
+  FastSelfCheck check;
+  if (row_end_ == row_begin_) return check;
+  Stopwatch clock;
+  const std::vector<Index> rows = self_check_rows(samples);
+  const auto vectors = self_check_vectors();
+  const std::size_t V = vectors.size(), S = rows.size();
+  std::vector<std::vector<double>> moments(V);
+  for (std::size_t k = 0; k < V; ++k) compute_moments(vectors[k].second, moments[k]);
+  std::vector<double> exact, scale, fast;
+  self_check_products(rows, vectors, moments, exact, scale, fast);
   check.rows = static_cast<int>(S);
   check.sampled_rows = rows;
   for (std::size_t k = 0; k < V; ++k) {
@@ -496,12 +597,23 @@ FastSelfCheck FastOperator::self_check(int samples) const {
   return check;
 }
 
+// Position of row i in the arrays of the rows held; std::out_of_range for a row not held.
+std::size_t FastOperator::local_row(Index i, const char* who) const {
+  if (i < row_begin_ || i >= row_end_)
+    throw std::out_of_range(std::string("FastOperator::") + who + ": row " + std::to_string(i) +
+                            " is not among the rows held, [" + std::to_string(row_begin_) + ", " +
+                            std::to_string(row_end_) + ")");
+  return static_cast<std::size_t>(i - row_begin_);
+}
+
 std::vector<Index> FastOperator::far_clusters(Index i) const {
-  return {far_cluster_.begin() + far_start_[static_cast<std::size_t>(i)], far_cluster_.begin() + far_start_[static_cast<std::size_t>(i) + 1]};
+  const std::size_t r = local_row(i, "far_clusters");
+  return {far_cluster_.begin() + far_start_[r], far_cluster_.begin() + far_start_[r + 1]};
 }
 
 std::vector<Index> FastOperator::near_elements(Index i) const {
-  return {near_col_.begin() + near_start_[static_cast<std::size_t>(i)], near_col_.begin() + near_start_[static_cast<std::size_t>(i) + 1]};
+  const std::size_t r = local_row(i, "near_elements");
+  return {near_col_.begin() + near_start_[r], near_col_.begin() + near_start_[r + 1]};
 }
 
 }  // namespace panelrad

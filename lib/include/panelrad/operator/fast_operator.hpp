@@ -4,6 +4,9 @@
 // admissible clusters (41) are taken whole and integrated by the degree-M Taylor far field
 // (44)-(48); non-admissible leaves form the near field (43), integrated once at setup and stored
 // sparse. Clusters coplanar with P_i contribute exactly 0 and are skipped; rows with rho = 0 too.
+// An operator may own only the rows [begin, end) of K_n (FastOptions::rows): the coverings (42),
+// near field (43) and far coefficients (44)-(45) of those rows; the cluster moments (48) of a
+// product still need all of v.
 #include <panelrad/operator/clustering_parameters.hpp>
 #include <panelrad/operator/collocation.hpp>
 #include <panelrad/operator/far_field.hpp>
@@ -21,7 +24,16 @@
 
 namespace panelrad {
 
-/// eta of (41) and M of (44) (ClusteringParameters), the near rule and the storage limits.
+/// Rows [begin, end) of K_n, the rows P_i whose coverings (42) an operator holds; end = -1 means
+/// n. The default is every row.
+struct RowRange {
+  geometry::Index begin = 0;
+  geometry::Index end = -1;
+  bool operator==(const RowRange&) const = default;
+};
+
+/// eta of (41) and M of (44) (ClusteringParameters), the near rule, the storage limits and the
+/// rows held.
 struct FastOptions : ClusteringParameters {
   NearFieldOptions near;
   /// Far-field coefficients are stored when they take at most this many bytes (0: automatic,
@@ -33,9 +45,13 @@ struct FastOptions : ClusteringParameters {
   /// Called when a setup stage starts (cluster geometry, near field, far field), with a line
   /// saying what it does, e.g. for progress on stderr. May be empty.
   std::function<void(const std::string&)> progress;
+  /// The rows set up and computed (default: all n). Must satisfy 0 <= begin <= end <= n
+  /// (std::invalid_argument otherwise). With fewer than n rows, apply() throws and apply_rows()
+  /// gives the rows held.
+  RowRange rows;
 };
 
-/// What setup found and stored: the covering's counts.
+/// What setup found and stored: the covering's counts (over the rows held).
 struct FastStatistics {
   std::size_t near_pairs = 0;          ///< (P_i, element) pairs in the near field
   std::size_t far_pairs = 0;           ///< (P_i, cluster) pairs in the far field
@@ -91,8 +107,18 @@ class FastOperator final : public RadiosityOperator {
  public:
   FastOperator(const Collocation& collocation, const FastOptions& options);
 
+  /// n: the number of columns of K_n, and of rows of the whole operator.
   geometry::Index size() const override { return n_; }
+  /// The rows held, [begin, end) with end resolved (every row: [0, n)).
+  RowRange rows() const { return {row_begin_, row_end_}; }
+  bool holds_all_rows() const { return row_begin_ == 0 && row_end_ == n_; }
+  /// y = K_n v, all n rows. std::logic_error when the operator holds only some rows (it has no
+  /// coverings for the others; apply_rows gives those it holds).
   void apply(const Eigen::VectorXd& v, Eigen::VectorXd& y) const override;
+  /// The rows held of K_n v: y_block has length end - begin and y_block[i - begin] = (K_n v)_i,
+  /// bit-identical to entry i of apply() on the whole operator. v has all n entries: the cluster
+  /// moments (48) are integrals of v over the whole surface.
+  void apply_rows(const Eigen::VectorXd& v, Eigen::VectorXd& y_block) const;
   std::string name() const override { return "fast"; }
   std::size_t bytes() const override { return stats_.bytes; }
   const FastStatistics& statistics() const { return stats_; }
@@ -100,6 +126,7 @@ class FastOperator final : public RadiosityOperator {
 
   /// Measures the product's real error on `samples` sampled rows (FastSelfCheck) against the
   /// exact closed-form rows (near field and far field together), for every self_check_vectors().
+  /// The rows are sampled among the rows held.
   FastSelfCheck self_check(int samples = 32) const;
 
   /// The test vectors of self_check, with their names: deterministic functions of the
@@ -107,22 +134,26 @@ class FastOperator final : public RadiosityOperator {
   std::vector<std::pair<std::string, Eigen::VectorXd>> self_check_vectors() const;
 
   /// Bytes the operator will hold without far-field coefficients, and the far-field pairs, from
-  /// the coverings of up to 256 evenly spaced rows (cheap: no integrals). For refusing sizes that
-  /// will not fit before allocating.
+  /// the coverings of up to 256 evenly spaced rows of `rows` (cheap: no integrals). For refusing
+  /// sizes that will not fit before allocating. The lists scale with the rows held; frames and
+  /// moments are per cluster and element of the whole surface.
   struct MemoryEstimate {
     std::size_t bytes = 0;         ///< held after setup, coefficients not stored
     std::size_t list_bytes = 0;    ///< of which near/far lists (held twice during setup)
     std::size_t far_pairs = 0;     ///< estimated (point, cluster) pairs in the far field
     std::size_t coefficient_bytes = 0;  ///< far_pairs x terms x 8, if stored
   };
-  static MemoryEstimate estimate_memory(const Collocation& collocation, double eta, int degree);
+  static MemoryEstimate estimate_memory(const Collocation& collocation, double eta, int degree,
+                                        const RowRange& rows = {});
   /// Bytes of the arrays whose size depends only on n, the number of clusters and M (frames,
-  /// moments, row data, row starts): MemoryEstimate::bytes without the near/far lists.
+  /// moments, row data, row starts): MemoryEstimate::bytes without the near/far lists. With
+  /// `rows` rows held (the row starts); without it, all n.
   static std::size_t fixed_bytes(std::size_t n, std::size_t clusters, int degree);
+  static std::size_t fixed_bytes(std::size_t n, std::size_t clusters, int degree, std::size_t rows);
 
   /// Cluster ids of the far field and element ids of the near field of row i (for tests: the
   /// covering plus the skipped coplanar clusters must partition the surface). Cluster id =
-  /// level_offset(l) + k.
+  /// level_offset(l) + k. Row i must be held (std::out_of_range otherwise).
   std::vector<geometry::Index> far_clusters(geometry::Index i) const;
   std::vector<geometry::Index> near_elements(geometry::Index i) const;
   /// Global id of cluster k of level l and its inverse.
@@ -130,6 +161,27 @@ class FastOperator final : public RadiosityOperator {
   std::pair<int, geometry::Index> cluster_of_id(geometry::Index id) const;
 
  private:
+  struct RowBlock;  // the coverings of a block of rows, while they are built
+
+  // Setup stages, in order.
+  void check_options();
+  void refuse_beyond_memory(const Collocation& collocation) const;
+  void report_stage(const std::string& what) const;
+  std::string rows_note() const;
+  void setup_cluster_frames();
+  void setup_element_data(const Collocation& collocation);
+  std::vector<RowBlock> cover_rows(const Collocation& collocation);
+  void store_coverings(std::vector<RowBlock>& blocks);
+  void setup_far_coefficients();
+  std::size_t held_bytes() const;
+  std::size_t local_row(geometry::Index i, const char* who) const;
+
+  std::vector<geometry::Index> self_check_rows(int samples) const;
+  void self_check_products(const std::vector<geometry::Index>& rows,
+                           const std::vector<std::pair<std::string, Eigen::VectorXd>>& vectors,
+                           const std::vector<std::vector<double>>& moments, std::vector<double>& exact,
+                           std::vector<double>& scale, std::vector<double>& fast) const;
+
   void compute_moments(const Eigen::VectorXd& v, std::vector<double>& moments) const;
   void far_coefficients(geometry::Index i, geometry::Index cluster, double* c) const;
   double apply_row(geometry::Index i, const Eigen::VectorXd& v, const std::vector<double>& moments,
@@ -138,19 +190,28 @@ class FastOperator final : public RadiosityOperator {
   std::shared_ptr<const geometry::ClusterTree> tree_;
   FastOptions options_;
   geometry::Index n_ = 0;
+  geometry::Index row_begin_ = 0, row_end_ = 0;   // the rows held, [begin, end)
   int terms_ = 0;                                 // (M+1)(M+2)/2
   std::vector<geometry::Index> level_offset_;     // first global id of each level
-  std::vector<double> rho_;                       // rho(P_i)
-  std::vector<Vec3> point_, normal_;              // P_i, n_P
+  std::vector<double> rho_;                       // rho(P_i), all n rows
+  std::vector<Vec3> point_, normal_;              // P_i, n_P, all n rows
   double unit_scale_ = 1;                         // far field in units of 2^k ~ diameter (exact scaling)
   std::vector<PlaneFrame> frame_;                 // per cluster: origin A(tau) (scaled), axes of its plane
   std::vector<std::array<double, 2>> to_parent_;  // per non-root cluster: its A in parent's frame
   std::vector<double> element_moments_;           // per element: Int_Delta x^p y^q dS about A(Delta)
-  // Near field (CSR over rows): element index and rho_i/pi Int G.
+  // Near field (CSR over the rows held, row i at i - begin): element index and rho_i/pi Int G.
+  // CSR rather than Eigen::SparseMatrix<double, RowMajor, StorageIndex>, measured on the cube,
+  // eta 0.2 (near pairs 5.6 a row at n = 49152, 2.8 at 196608, 1.4 at 786432): a 64-bit
+  // StorageIndex takes 16 bytes a pair against 12 (10.5 MB against 8.3 MB at n = 196608), at no
+  // gain in speed; a 32-bit one saves only the 4 bytes a row of the row starts (0.8 MB), bounds
+  // the pairs by 2^31, and is slower on one thread: 50 near-field products at n = 196608 took
+  // 0.063 s against 0.061 s on one thread, 0.033 s against 0.036 s on two (49152: 0.023 / 0.021 s,
+  // 0.012 / 0.013 s). Here the near sum is fused with the far sum of the same row; it is < 1% of
+  // a product (0.44 s at n = 196608, two threads).
   std::vector<std::int64_t> near_start_;
   std::vector<geometry::Index> near_col_;
   std::vector<double> near_val_;
-  // Far field (CSR over rows): cluster id and, when stored, the rho-scaled Taylor coefficients.
+  // Far field (CSR over the rows held): cluster id and, when stored, the rho-scaled Taylor coefficients.
   std::vector<std::int64_t> far_start_;
   std::vector<geometry::Index> far_cluster_;
   LargeBuffer far_coef_;                         // uninitialized, huge pages, filled in parallel
