@@ -256,17 +256,19 @@ void parse_mtl(const std::string& path, const std::string& role, std::map<std::s
   }
 }
 
-SceneData load_obj_scene(const std::string& path, const geometry::TextReadOptions& options) {
-  SceneData scene;
-  geometry::ObjMaterialUse use;  // mtllib and per-face usemtl, as the reader counted the faces
-  scene.mesh = load_mesh(path, scene.notes, options, &use);
-  const auto nf = static_cast<std::size_t>(scene.mesh.num_facets);
+/// Every face has a material: the reader counted as many faces as the mesh has facets, and each
+/// comes after a usemtl.
+void check_face_materials(const geometry::ObjMaterialUse& use, std::size_t nf, const std::string& path) {
   if (use.face_material.size() != nf)
     fail(path, 0, "internal error: " + std::to_string(use.face_material.size()) + " faces but the mesh has " +
                       std::to_string(nf) + " facets");
   for (std::size_t f = 0; f < nf; ++f)
     if (use.face_material[f].empty())
       fail(path, use.face_line[f], "facet " + std::to_string(f) + " comes before any usemtl (every face needs a material)");
+}
+
+/// The MTL files the OBJ names (path relative to the OBJ's folder, mtllib line), each file once.
+std::vector<std::pair<std::string, long>> mtl_libraries(const geometry::ObjMaterialUse& use, const std::string& path) {
   std::vector<std::pair<std::string, long>> libraries;  // MTL path, mtllib line; each file once
   for (const geometry::ObjMaterialUse::Library& l : use.libraries) {
     const std::string lib = (fs::path(path).parent_path() / l.file).string();
@@ -274,53 +276,79 @@ SceneData load_obj_scene(const std::string& path, const geometry::TextReadOption
     if (!seen) libraries.emplace_back(lib, l.line);
   }
   if (libraries.empty()) fail(path, 0, "no mtllib statement: the scene's materials (Kd = rho, Ke = E) are needed");
-  const std::vector<std::string>& face_material = use.face_material;
-  const std::vector<long>& face_line = use.face_line;
-  const std::vector<long>& face_usemtl_line = use.usemtl_line;
+  return libraries;
+}
 
+/// The materials of all MTL files of an OBJ.
+struct MaterialLibrary {
   std::map<std::string, Material> materials;
   std::size_t defined = 0;
-  std::string library_names;
-  for (const auto& [lib, line] : libraries) {
-    parse_mtl(lib, "MTL file named by " + path + ":" + std::to_string(line), materials, defined, scene.notes, options);
-    library_names += (library_names.empty() ? "" : ", ") + fs::path(lib).filename().string();
-  }
+  std::string file_names;  ///< "a.mtl, b.mtl", for messages
+};
 
+MaterialLibrary read_materials(const std::vector<std::pair<std::string, long>>& libraries, const std::string& path,
+                               std::vector<std::string>& notes, const geometry::TextReadOptions& options) {
+  MaterialLibrary library;
+  for (const auto& [lib, line] : libraries) {
+    parse_mtl(lib, "MTL file named by " + path + ":" + std::to_string(line), library.materials, library.defined, notes,
+              options);
+    library.file_names += (library.file_names.empty() ? "" : ", ") + fs::path(lib).filename().string();
+  }
+  return library;
+}
+
+/// Checks rho = Kd and E = Ke of material `name` in each of R, G, B; `facet` is its first user.
+void check_material_values(const Material& m, const std::string& name, const std::string& facet) {
+  static const char* const kChannel[3] = {"R", "G", "B"};
+  for (int c = 0; c < 3; ++c) {
+    const std::string rho_problem = value_problem(true, (*m.kd)[c]);
+    if (!rho_problem.empty())
+      fail(m.file, m.kd_line, "material " + in_quotes(name) + ": rho = Kd " + kChannel[c] + " = " +
+                                  number((*m.kd)[c]) + " " + rho_problem + "; first used by " + facet);
+    const std::string e_problem = value_problem(false, m.ke[c]);
+    if (!e_problem.empty())
+      fail(m.file, m.ke_line, "material " + in_quotes(name) + ": E = Ke " + kChannel[c] + " = " +
+                                  number(m.ke[c]) + " " + e_problem + "; first used by " + facet);
+  }
+}
+
+/// rho and E of every facet in channels R, G, B, from its usemtl material's Kd and Ke.
+void assign_materials(SceneData& scene, const geometry::ObjMaterialUse& use, const MaterialLibrary& library,
+                      const std::string& path) {
+  const auto nf = static_cast<std::size_t>(scene.mesh.num_facets);
   scene.channels = {"R", "G", "B"};
   scene.rho.assign(3, std::vector<double>(nf, 0.0));
   scene.emission.assign(3, std::vector<double>(nf, 0.0));
-  scene.facet_material = face_material;
+  scene.facet_material = use.face_material;
   std::set<std::string> checked;
   for (std::size_t f = 0; f < nf; ++f) {
-    const std::string& name = face_material[f];
-    const std::string facet = "facet " + std::to_string(f) + " (" + path + ":" + std::to_string(face_line[f]) + ")";
-    const auto it = materials.find(name);
-    if (it == materials.end())
-      fail(path, face_usemtl_line[f], "usemtl " + in_quotes(name) + ": unknown material (not defined in " + library_names +
-                                          "), used by " + facet);
+    const std::string& name = use.face_material[f];
+    const std::string facet = "facet " + std::to_string(f) + " (" + path + ":" + std::to_string(use.face_line[f]) + ")";
+    const auto it = library.materials.find(name);
+    if (it == library.materials.end())
+      fail(path, use.usemtl_line[f], "usemtl " + in_quotes(name) + ": unknown material (not defined in " +
+                                         library.file_names + "), used by " + facet);
     const Material& m = it->second;
     if (!m.kd)
       fail(m.file, m.line, "material " + in_quotes(name) + " has no Kd (its reflectivity rho), used by " + facet);
-    if (checked.insert(name).second) {  // first facet using it: check the values once
-      static const char* const kChannel[3] = {"R", "G", "B"};
-      for (int c = 0; c < 3; ++c) {
-        const std::string rho_problem = value_problem(true, (*m.kd)[c]);
-        if (!rho_problem.empty())
-          fail(m.file, m.kd_line, "material " + in_quotes(name) + ": rho = Kd " + kChannel[c] + " = " +
-                                      number((*m.kd)[c]) + " " + rho_problem + "; first used by " + facet);
-        const std::string e_problem = value_problem(false, m.ke[c]);
-        if (!e_problem.empty())
-          fail(m.file, m.ke_line, "material " + in_quotes(name) + ": E = Ke " + kChannel[c] + " = " +
-                                      number(m.ke[c]) + " " + e_problem + "; first used by " + facet);
-      }
-    }
+    if (checked.insert(name).second) check_material_values(m, name, facet);  // first facet using it
     for (std::size_t c = 0; c < 3; ++c) {
       scene.rho[c][f] = (*m.kd)[c];
       scene.emission[c][f] = m.ke[c];
     }
   }
-  scene.notes.push_back("materials: " + std::to_string(defined) + " from " + library_names + ", " +
+  scene.notes.push_back("materials: " + std::to_string(library.defined) + " from " + library.file_names + ", " +
                         std::to_string(checked.size()) + " used by " + std::to_string(nf) + " facets");
+}
+
+SceneData load_obj_scene(const std::string& path, const geometry::TextReadOptions& options) {
+  SceneData scene;
+  geometry::ObjMaterialUse use;  // mtllib and per-face usemtl, as the reader counted the faces
+  scene.mesh = load_mesh(path, scene.notes, options, &use);
+  check_face_materials(use, static_cast<std::size_t>(scene.mesh.num_facets), path);
+  const std::vector<std::pair<std::string, long>> libraries = mtl_libraries(use, path);
+  const MaterialLibrary library = read_materials(libraries, path, scene.notes, options);
+  assign_materials(scene, use, library, path);
   return scene;
 }
 
@@ -369,39 +397,15 @@ struct JsonLayout {
   }
 };
 
-/// Parses the JSON text, filling `layout`. Throws nlohmann's exceptions for bad JSON.
-Json parse_json(const std::string& text, JsonLayout& layout) {
-  const char* read = text.data();  // one past the last character the lexer has taken
-  long line = 1;                   // the line of text[counted - 1]
-  const char* counted = text.data();
-  // The line of the character before `end` (the last one of the token just read).
-  const auto line_before = [&](const char* end) {
-    if (end > text.data()) --end;
-    if (end < counted) return line;  // the lexer never goes back; keep what is counted
-    line += static_cast<long>(std::count(counted, end, '\n'));
-    counted = end;
-    return line;
-  };
-  struct Frame {
-    bool is_array = false;
-    std::string path;
-    std::size_t next_index = 0;
-    std::string key;
-    std::map<std::string, long> key_lines;
-  };
-  std::vector<Frame> stack;
-  constexpr std::size_t kRecordedDepth = 3;  // root object, "facets" array, facet entry
-  // The path of a value that starts now inside the innermost container.
-  const auto child_path = [&]() -> std::string {
-    if (stack.empty()) return "";
-    Frame& parent = stack.back();
-    if (parent.is_array) return parent.path + "[" + std::to_string(parent.next_index++) + "]";
-    return parent.path.empty() ? parent.key : parent.path + "." + parent.key;
-  };
-  const auto record = [&](const std::string& path, long at) {
-    if (stack.size() <= kRecordedDepth && !path.empty()) layout.line_of.emplace(path, at);
-  };
-  const Json::parser_callback_t callback = [&](int, nlohmann::json::parse_event_t event, Json& parsed) {
+/// Records a JsonLayout from nlohmann's parse events: each container keeps its path, the index of
+/// its next element or its current key, and the lines of its keys (for duplicates).
+class JsonLayoutRecorder {
+ public:
+  JsonLayoutRecorder(const std::string& text, JsonLayout& layout)
+      : begin_(text.data()), counted_(text.data()), layout_(layout) {}
+
+  /// One parse event; `read` is one past the last character the lexer has taken.
+  void on_event(nlohmann::json::parse_event_t event, Json& parsed, const char* read) {
     using Event = nlohmann::json::parse_event_t;
     switch (event) {
       case Event::object_start:
@@ -409,34 +413,82 @@ Json parse_json(const std::string& text, JsonLayout& layout) {
         const long at = line_before(read);
         const std::string path = child_path();
         record(path, at);
-        stack.push_back(Frame{event == Event::array_start, path, 0, "", {}});
+        stack_.push_back(Frame{event == Event::array_start, path, 0, "", {}});
         break;
       }
       case Event::object_end:
       case Event::array_end:
-        if (!stack.empty()) stack.pop_back();
+        if (!stack_.empty()) stack_.pop_back();
         break;
-      case Event::key: {
-        const long at = line_before(read);
-        Frame& object = stack.back();
-        object.key = parsed.get<std::string>();
-        const auto [it, inserted] = object.key_lines.try_emplace(object.key, at);
-        if (!inserted && layout.duplicate.empty())
-          layout.duplicate = "duplicate key " + in_quotes(object.key) +
-                             (object.path.empty() ? std::string(" at the top level") : " in " + object.path) +
-                             " (lines " + std::to_string(it->second) + " and " + std::to_string(at) +
-                             "): a JSON object's keys must be unique (the later value would silently replace "
-                             "the earlier)";
-        if (!inserted && layout.duplicate_line == 0) layout.duplicate_line = at;
+      case Event::key:
+        on_key(parsed.get<std::string>(), line_before(read));
         break;
-      }
       case Event::value: {
         // A number is ended by the character after it, which the lexer has read already.
-        const long at = line_before(parsed.is_number() && read > text.data() ? read - 1 : read);
+        const long at = line_before(parsed.is_number() && read > begin_ ? read - 1 : read);
         record(child_path(), at);
         break;
       }
     }
+  }
+
+ private:
+  struct Frame {
+    bool is_array = false;
+    std::string path;
+    std::size_t next_index = 0;
+    std::string key;
+    std::map<std::string, long> key_lines;
+  };
+  static constexpr std::size_t kRecordedDepth = 3;  // root object, "facets" array, facet entry
+
+  // The line of the character before `end` (the last one of the token just read).
+  long line_before(const char* end) {
+    if (end > begin_) --end;
+    if (end < counted_) return line_;  // the lexer never goes back; keep what is counted
+    line_ += static_cast<long>(std::count(counted_, end, '\n'));
+    counted_ = end;
+    return line_;
+  }
+
+  // The path of a value that starts now inside the innermost container.
+  std::string child_path() {
+    if (stack_.empty()) return "";
+    Frame& parent = stack_.back();
+    if (parent.is_array) return parent.path + "[" + std::to_string(parent.next_index++) + "]";
+    return parent.path.empty() ? parent.key : parent.path + "." + parent.key;
+  }
+
+  void record(const std::string& path, long at) {
+    if (stack_.size() <= kRecordedDepth && !path.empty()) layout_.line_of.emplace(path, at);
+  }
+
+  void on_key(const std::string& key, long at) {
+    Frame& object = stack_.back();
+    object.key = key;
+    const auto [it, inserted] = object.key_lines.try_emplace(object.key, at);
+    if (!inserted && layout_.duplicate.empty())
+      layout_.duplicate = "duplicate key " + in_quotes(object.key) +
+                          (object.path.empty() ? std::string(" at the top level") : " in " + object.path) +
+                          " (lines " + std::to_string(it->second) + " and " + std::to_string(at) +
+                          "): a JSON object's keys must be unique (the later value would silently replace "
+                          "the earlier)";
+    if (!inserted && layout_.duplicate_line == 0) layout_.duplicate_line = at;
+  }
+
+  const char* begin_;
+  long line_ = 1;  // the line of counted_[-1]
+  const char* counted_;
+  JsonLayout& layout_;
+  std::vector<Frame> stack_;
+};
+
+/// Parses the JSON text, filling `layout`. Throws nlohmann's exceptions for bad JSON.
+Json parse_json(const std::string& text, JsonLayout& layout) {
+  const char* read = text.data();  // one past the last character the lexer has taken
+  JsonLayoutRecorder recorder(text, layout);
+  const Json::parser_callback_t callback = [&](int, nlohmann::json::parse_event_t event, Json& parsed) {
+    recorder.on_event(event, parsed, read);
     return true;
   };
   return Json::parse(TrackedChar(text.data(), &read), TrackedChar(text.data() + text.size(), &read), callback);
@@ -471,22 +523,22 @@ void check_values(const std::vector<double>& values, bool is_rho, const std::vec
   }
 }
 
-SceneData load_off_scene(const std::string& path, const std::string& materials_path,
-                            const geometry::TextReadOptions& options) {
-  SceneData scene;
-  scene.mesh = load_mesh(path, scene.notes, options);
-  const auto nf = static_cast<std::size_t>(scene.mesh.num_facets);
-
+/// The JSON sidecar's path: `materials_path`, or the OFF's path with extension .json; it must exist.
+std::string sidecar_path(const std::string& path, const std::string& materials_path) {
   const std::string file =
       materials_path.empty() ? fs::path(path).replace_extension(".json").string() : materials_path;
-  {
-    std::error_code ec;
-    if (!fs::exists(file, ec))
-      fail(file, 0, "facet data not found: expected this JSON sidecar for " + path +
-                        (materials_path.empty() ? " (the OFF's path with extension .json)" : ""));
-  }
+  std::error_code ec;
+  if (!fs::exists(file, ec))
+    fail(file, 0, "facet data not found: expected this JSON sidecar for " + path +
+                      (materials_path.empty() ? " (the OFF's path with extension .json)" : ""));
+  return file;
+}
+
+/// Reads and parses the sidecar `file` of the OFF `path`: a JSON object with no duplicate key and
+/// only the keys "channels", "default", "facets".
+Json read_sidecar(const std::string& file, const std::string& path, const geometry::TextReadOptions& options,
+                  JsonLayout& layout) {
   Json doc;
-  JsonLayout layout;
   {
     geometry::TextReadOptions json_options = options;
     json_options.strip_utf8_bom = false;  // nlohmann skips it; byte positions stay the file's
@@ -500,111 +552,156 @@ SceneData load_off_scene(const std::string& path, const std::string& materials_p
     }
   }
   if (!layout.duplicate.empty()) fail(file, layout.duplicate_line, layout.duplicate);
-  const auto line = [&](const std::string& where) { return layout.line(where); };
   if (!doc.is_object()) fail(file, 0, "expected a JSON object with \"channels\", \"default\", \"facets\"");
   for (const auto& [key, value] : doc.items())
     if (key != "channels" && key != "default" && key != "facets")
-      fail(file, line(key), "unknown key " + in_quotes(key) + " (expected \"channels\", \"default\", \"facets\")");
+      fail(file, layout.line(key), "unknown key " + in_quotes(key) + " (expected \"channels\", \"default\", \"facets\")");
+  return doc;
+}
 
-  // Channels.
-  if (doc.contains("channels")) {
-    const Json& ch = doc["channels"];
-    if (!ch.is_array() || ch.empty()) fail(file, line("channels"), "\"channels\" must be a non-empty array of names");
-    for (std::size_t c = 0; c < ch.size(); ++c) {
-      const std::string at = "channels[" + std::to_string(c) + "]";
-      if (!ch[c].is_string() || ch[c].get<std::string>().empty())
-        fail(file, line(at), at + " is " + ch[c].dump() + ": expected a non-empty name");
-      const std::string name = ch[c].get<std::string>();
-      if (std::find(scene.channels.begin(), scene.channels.end(), name) != scene.channels.end())
-        fail(file, line(at), "channel " + in_quotes(name) + " is named twice");
-      scene.channels.push_back(name);
-    }
+/// The channel names: "channels", distinct and non-empty, or the one channel "value".
+std::vector<std::string> read_channels(const Json& doc, const std::string& file, const JsonLayout& layout) {
+  if (!doc.contains("channels")) return {"value"};
+  std::vector<std::string> channels;
+  const Json& ch = doc["channels"];
+  if (!ch.is_array() || ch.empty()) fail(file, layout.line("channels"), "\"channels\" must be a non-empty array of names");
+  for (std::size_t c = 0; c < ch.size(); ++c) {
+    const std::string at = "channels[" + std::to_string(c) + "]";
+    if (!ch[c].is_string() || ch[c].get<std::string>().empty())
+      fail(file, layout.line(at), at + " is " + ch[c].dump() + ": expected a non-empty name");
+    const std::string name = ch[c].get<std::string>();
+    if (std::find(channels.begin(), channels.end(), name) != channels.end())
+      fail(file, layout.line(at), "channel " + in_quotes(name) + " is named twice");
+    channels.push_back(name);
+  }
+  return channels;
+}
+
+/// rho and E of "default", each per channel, when given.
+struct DefaultValues {
+  std::optional<std::vector<double>> rho, e;
+};
+
+DefaultValues read_defaults(const Json& doc, const std::vector<std::string>& channels, const std::string& file,
+                            const JsonLayout& layout) {
+  DefaultValues defaults;
+  if (!doc.contains("default")) return defaults;
+  const Json& d = doc["default"];
+  if (!d.is_object())
+    fail(file, layout.line("default"), "\"default\" is " + d.dump() + ": expected an object {\"rho\": .., \"E\": ..}");
+  for (const auto& [key, value] : d.items()) {
+    const long at = layout.line("default." + key);
+    if (key != "rho" && key != "E")
+      fail(file, at, "unknown key " + in_quotes(key) + " in \"default\" (expected \"rho\", \"E\")");
+    std::vector<double> v = channel_values(value, channels.size(), file, at, "default " + key);
+    check_values(v, key == "rho", channels, file, at, "default");
+    (key == "rho" ? defaults.rho : defaults.e) = std::move(v);
+  }
+  return defaults;
+}
+
+/// rho and E per facet as the entries of "facets" give them, and the entry naming each facet
+/// (-1: none).
+struct FacetEntries {
+  std::vector<std::optional<std::vector<double>>> rho, e;
+  std::vector<long> entry_of;
+};
+
+/// Where the facet values are read: the sidecar `file` of the OFF `path` with nf facets.
+struct SidecarContext {
+  const std::string& file;
+  const std::string& path;
+  std::size_t nf;
+  const std::vector<std::string>& channels;
+  const JsonLayout& layout;
+};
+
+/// Checks the keys of entry `at`: only "id" or "ids" (exactly one), "rho", "E" (at least one).
+void check_entry_keys(const Json& entry, const std::string& at, const SidecarContext& ctx) {
+  const long at_line = ctx.layout.line(at);
+  if (!entry.is_object()) fail(ctx.file, at_line, at + " is " + entry.dump() + ": expected an object");
+  for (const auto& [key, value] : entry.items())
+    if (key != "id" && key != "ids" && key != "rho" && key != "E")
+      fail(ctx.file, ctx.layout.line(at + "." + key),
+           at + ": unknown key " + in_quotes(key) + " (expected \"id\" or \"ids\", \"rho\", \"E\")");
+  if (entry.contains("id") == entry.contains("ids"))
+    fail(ctx.file, at_line, at + ": needs exactly one of \"id\" (a facet) or \"ids\" (a list of facets)");
+  if (!entry.contains("rho") && !entry.contains("E")) fail(ctx.file, at_line, at + ": gives neither \"rho\" nor \"E\"");
+}
+
+/// The facets entry k (`at`) names, each in range and named by no earlier id; marks them in entry_of.
+std::vector<std::size_t> entry_facets(const Json& entry, std::size_t k, const std::string& at,
+                                      std::vector<long>& entry_of, const SidecarContext& ctx) {
+  std::vector<Json> ids;
+  const std::string id_key = entry.contains("id") ? "id" : "ids";
+  const long id_line = ctx.layout.line(at + "." + id_key);
+  if (entry.contains("id")) {
+    ids.push_back(entry["id"]);
   } else {
-    scene.channels = {"value"};
+    const Json& list = entry["ids"];
+    if (!list.is_array() || list.empty())
+      fail(ctx.file, id_line, at + ": \"ids\" must be a non-empty array of facet ids");
+    ids.assign(list.begin(), list.end());
   }
-  const std::size_t nc = scene.channels.size();
-
-  // Default values.
-  std::optional<std::vector<double>> default_rho, default_e;
-  if (doc.contains("default")) {
-    const Json& d = doc["default"];
-    if (!d.is_object())
-      fail(file, line("default"), "\"default\" is " + d.dump() + ": expected an object {\"rho\": .., \"E\": ..}");
-    for (const auto& [key, value] : d.items()) {
-      const long at = line("default." + key);
-      if (key != "rho" && key != "E")
-        fail(file, at, "unknown key " + in_quotes(key) + " in \"default\" (expected \"rho\", \"E\")");
-      std::vector<double> v = channel_values(value, nc, file, at, "default " + key);
-      check_values(v, key == "rho", scene.channels, file, at, "default");
-      (key == "rho" ? default_rho : default_e) = std::move(v);
+  std::vector<std::size_t> targets;
+  for (const Json& id : ids) {
+    if (!id.is_number_integer()) fail(ctx.file, id_line, at + ": facet id " + id.dump() + " is not an integer");
+    const auto value = id.get<long long>();
+    if (value < 0 || static_cast<unsigned long long>(value) >= ctx.nf)
+      fail(ctx.file, id_line, at + ": facet " + std::to_string(value) + " is out of range [0, " +
+                                  std::to_string(ctx.nf - 1) + "] (" + ctx.path + " has " + std::to_string(ctx.nf) +
+                                  " faces)");
+    const auto f = static_cast<std::size_t>(value);
+    if (entry_of[f] >= 0) {
+      const bool same = entry_of[f] == static_cast<long>(k);
+      const std::string other = "facets[" + std::to_string(entry_of[f]) + "]";
+      const long other_line = ctx.layout.line(other);
+      fail(ctx.file, id_line,
+           at + ": facet " + std::to_string(f) + " is given twice (also in " +
+               (same ? std::string("this entry")
+                     : other + (other_line > 0 ? " at line " + std::to_string(other_line) : std::string())) +
+               ")");
     }
+    entry_of[f] = static_cast<long>(k);
+    targets.push_back(f);
   }
+  return targets;
+}
 
-  // Facet entries.
-  std::vector<std::optional<std::vector<double>>> rho(nf), e(nf);
-  std::vector<long> entry_of(nf, -1);
-  if (doc.contains("facets")) {
-    const Json& facets = doc["facets"];
-    if (!facets.is_array())
-      fail(file, line("facets"), "\"facets\" must be an array of {\"id\" or \"ids\", \"rho\", \"E\"}");
-    for (std::size_t k = 0; k < facets.size(); ++k) {
-      const Json& entry = facets[k];
-      const std::string at = "facets[" + std::to_string(k) + "]";
-      const long at_line = line(at);
-      if (!entry.is_object()) fail(file, at_line, at + " is " + entry.dump() + ": expected an object");
-      for (const auto& [key, value] : entry.items())
-        if (key != "id" && key != "ids" && key != "rho" && key != "E")
-          fail(file, line(at + "." + key),
-               at + ": unknown key " + in_quotes(key) + " (expected \"id\" or \"ids\", \"rho\", \"E\")");
-      if (entry.contains("id") == entry.contains("ids"))
-        fail(file, at_line, at + ": needs exactly one of \"id\" (a facet) or \"ids\" (a list of facets)");
-      if (!entry.contains("rho") && !entry.contains("E")) fail(file, at_line, at + ": gives neither \"rho\" nor \"E\"");
-      std::vector<Json> ids;
-      const std::string id_key = entry.contains("id") ? "id" : "ids";
-      const long id_line = line(at + "." + id_key);
-      if (entry.contains("id")) {
-        ids.push_back(entry["id"]);
-      } else {
-        const Json& list = entry["ids"];
-        if (!list.is_array() || list.empty())
-          fail(file, id_line, at + ": \"ids\" must be a non-empty array of facet ids");
-        ids.assign(list.begin(), list.end());
-      }
-      std::vector<std::size_t> targets;
-      for (const Json& id : ids) {
-        if (!id.is_number_integer()) fail(file, id_line, at + ": facet id " + id.dump() + " is not an integer");
-        const auto value = id.get<long long>();
-        if (value < 0 || static_cast<unsigned long long>(value) >= nf)
-          fail(file, id_line, at + ": facet " + std::to_string(value) + " is out of range [0, " + std::to_string(nf - 1) +
-                                  "] (" + path + " has " + std::to_string(nf) + " faces)");
-        const auto f = static_cast<std::size_t>(value);
-        if (entry_of[f] >= 0) {
-          const bool same = entry_of[f] == static_cast<long>(k);
-          const std::string other = "facets[" + std::to_string(entry_of[f]) + "]";
-          const long other_line = line(other);
-          fail(file, id_line,
-               at + ": facet " + std::to_string(f) + " is given twice (also in " +
-                   (same ? std::string("this entry")
-                         : other + (other_line > 0 ? " at line " + std::to_string(other_line) : std::string())) +
-                   ")");
-        }
-        entry_of[f] = static_cast<long>(k);
-        targets.push_back(f);
-      }
-      const std::string who = at + " (facet " + std::to_string(targets.front()) +
-                              (targets.size() > 1 ? " and " + std::to_string(targets.size() - 1) + " more" : "") + ")";
-      for (const char* key : {"rho", "E"}) {
-        if (!entry.contains(key)) continue;
-        const bool is_rho = std::string(key) == "rho";
-        const long key_line = line(at + "." + key);
-        const std::vector<double> v = channel_values(entry[key], nc, file, key_line, who + " " + key);
-        check_values(v, is_rho, scene.channels, file, key_line, who);
-        for (std::size_t f : targets) (is_rho ? rho : e)[f] = v;
-      }
-    }
+/// Reads entry k of "facets" into `entries`.
+void read_facet_entry(const Json& entry, std::size_t k, FacetEntries& entries, const SidecarContext& ctx) {
+  const std::string at = "facets[" + std::to_string(k) + "]";
+  check_entry_keys(entry, at, ctx);
+  const std::vector<std::size_t> targets = entry_facets(entry, k, at, entries.entry_of, ctx);
+  const std::string who = at + " (facet " + std::to_string(targets.front()) +
+                          (targets.size() > 1 ? " and " + std::to_string(targets.size() - 1) + " more" : "") + ")";
+  for (const char* key : {"rho", "E"}) {
+    if (!entry.contains(key)) continue;
+    const bool is_rho = std::string(key) == "rho";
+    const long key_line = ctx.layout.line(at + "." + key);
+    const std::vector<double> v = channel_values(entry[key], ctx.channels.size(), ctx.file, key_line, who + " " + key);
+    check_values(v, is_rho, ctx.channels, ctx.file, key_line, who);
+    for (std::size_t f : targets) (is_rho ? entries.rho : entries.e)[f] = v;
   }
+}
 
-  // Every facet needs both values, from its entry or the default.
+/// The entries of "facets" (an array of {"id" or "ids", "rho", "E"}), when given.
+FacetEntries read_facet_entries(const Json& doc, const SidecarContext& ctx) {
+  FacetEntries entries{std::vector<std::optional<std::vector<double>>>(ctx.nf),
+                       std::vector<std::optional<std::vector<double>>>(ctx.nf), std::vector<long>(ctx.nf, -1)};
+  if (!doc.contains("facets")) return entries;
+  const Json& facets = doc["facets"];
+  if (!facets.is_array())
+    fail(ctx.file, ctx.layout.line("facets"), "\"facets\" must be an array of {\"id\" or \"ids\", \"rho\", \"E\"}");
+  for (std::size_t k = 0; k < facets.size(); ++k) read_facet_entry(facets[k], k, entries, ctx);
+  return entries;
+}
+
+/// Every facet needs both values, from its entry or the default.
+void assign_facet_values(SceneData& scene, const FacetEntries& entries, const DefaultValues& defaults,
+                         const SidecarContext& ctx) {
+  const std::size_t nf = ctx.nf, nc = scene.channels.size();
+  const std::vector<long>& entry_of = entries.entry_of;
   scene.rho.assign(nc, std::vector<double>(nf, 0.0));
   scene.emission.assign(nc, std::vector<double>(nf, 0.0));
   scene.facet_material.assign(nf, "");
@@ -612,18 +709,34 @@ SceneData load_off_scene(const std::string& path, const std::string& materials_p
   for (std::size_t f = 0; f < nf; ++f) {
     if (entry_of[f] >= 0) ++listed;
     for (const bool is_rho : {true, false}) {
-      const auto& given = (is_rho ? rho : e)[f];
-      const auto& fallback = is_rho ? default_rho : default_e;
+      const auto& given = (is_rho ? entries.rho : entries.e)[f];
+      const auto& fallback = is_rho ? defaults.rho : defaults.e;
       if (!given && !fallback)
-        fail(file, entry_of[f] >= 0 ? line("facets[" + std::to_string(entry_of[f]) + "]") : 0, "facet " + std::to_string(f) + " has no " + (is_rho ? "rho" : "E") +
-                          (entry_of[f] >= 0 ? " (in facets[" + std::to_string(entry_of[f]) + "])" : " (not listed)") +
-                          " and there is no default " + (is_rho ? "rho" : "E"));
+        fail(ctx.file, entry_of[f] >= 0 ? ctx.layout.line("facets[" + std::to_string(entry_of[f]) + "]") : 0,
+             "facet " + std::to_string(f) + " has no " + (is_rho ? "rho" : "E") +
+                 (entry_of[f] >= 0 ? " (in facets[" + std::to_string(entry_of[f]) + "])" : " (not listed)") +
+                 " and there is no default " + (is_rho ? "rho" : "E"));
       const std::vector<double>& v = given ? *given : *fallback;
       for (std::size_t c = 0; c < nc; ++c) (is_rho ? scene.rho : scene.emission)[c][f] = v[c];
     }
   }
-  scene.notes.push_back("facet data: " + file + ", " + std::to_string(nc) + " channel" + (nc > 1 ? "s" : "") + ", " +
-                        std::to_string(listed) + " of " + std::to_string(nf) + " facets listed");
+  scene.notes.push_back("facet data: " + ctx.file + ", " + std::to_string(nc) + " channel" + (nc > 1 ? "s" : "") +
+                        ", " + std::to_string(listed) + " of " + std::to_string(nf) + " facets listed");
+}
+
+SceneData load_off_scene(const std::string& path, const std::string& materials_path,
+                            const geometry::TextReadOptions& options) {
+  SceneData scene;
+  scene.mesh = load_mesh(path, scene.notes, options);
+  const auto nf = static_cast<std::size_t>(scene.mesh.num_facets);
+  const std::string file = sidecar_path(path, materials_path);
+  JsonLayout layout;
+  const Json doc = read_sidecar(file, path, options, layout);
+  scene.channels = read_channels(doc, file, layout);
+  const DefaultValues defaults = read_defaults(doc, scene.channels, file, layout);
+  const SidecarContext ctx{file, path, nf, scene.channels, layout};
+  const FacetEntries entries = read_facet_entries(doc, ctx);
+  assign_facet_values(scene, entries, defaults, ctx);
   return scene;
 }
 

@@ -366,6 +366,111 @@ void check_options(const RenderOptions& o) {
     throw std::invalid_argument("write_radiosity_png: view_direction must be finite and non-zero");
 }
 
+// ---------------------------------------------------------------------------------------------
+// The picture's stages: camera, fit of the projected field into the plot area, rasterization of
+// the elements, colour bar, and the average of each pixel's samples.
+
+/// Orthographic camera looking along -d; screen right r and up u with r x u = d.
+struct OrthoCamera {
+  Vec3 d, r, u;
+};
+
+OrthoCamera camera_along(const Vec3& view_direction) {
+  const Vec3 d = view_direction.normalized();
+  const Vec3 up0 = std::abs(d.z()) > 1.0 - 1e-9 ? Vec3::UnitY() : Vec3::UnitZ();
+  const Vec3 r = up0.cross(d).normalized();
+  const Vec3 u = d.cross(r);
+  return OrthoCamera{d, r, u};
+}
+
+/// Screen position (in samples) = o + (projection - c) * scale, y downwards.
+struct ScreenFit {
+  double scale, cx, cy, ox, oy;
+};
+
+/// Fits the projected box of the field into the plot area (plot_w x H pixels) with a 5% margin,
+/// keeping the aspect ratio.
+ScreenFit fit_to_plot(const ElementField& field, const OrthoCamera& camera, int plot_w, int H) {
+  const Vec3& r = camera.r;
+  const Vec3& u = camera.u;
+  double xlo = std::numeric_limits<double>::infinity(), xhi = -xlo, ylo = xlo, yhi = -xlo;
+  for (const auto& tri : field.triangle)
+    for (const Vec3& p : tri) {
+      xlo = std::min(xlo, p.dot(r));
+      xhi = std::max(xhi, p.dot(r));
+      ylo = std::min(ylo, p.dot(u));
+      yhi = std::max(yhi, p.dot(u));
+    }
+  const double sw = kSamples * plot_w * 0.9, sh = kSamples * H * 0.9;
+  const double bw = xhi - xlo, bh = yhi - ylo;
+  double scale = std::min(bw > 0.0 ? sw / bw : std::numeric_limits<double>::infinity(),
+                          bh > 0.0 ? sh / bh : std::numeric_limits<double>::infinity());
+  if (!std::isfinite(scale)) scale = 1.0;
+  const double cx = 0.5 * (xlo + xhi), cy = 0.5 * (ylo + yhi);
+  const double ox = 0.5 * kSamples * plot_w, oy = 0.5 * kSamples * H;
+  return ScreenFit{scale, cx, cy, ox, oy};
+}
+
+/// A W x H pixel canvas of background samples, none drawn yet.
+Canvas blank_canvas(int W, int H) {
+  Canvas cv{kSamples * W, kSamples * H, {}, {}};
+  const std::size_t samples = static_cast<std::size_t>(cv.w) * static_cast<std::size_t>(cv.h);
+  cv.colour.assign(samples, kBackground);
+  cv.depth.assign(samples, -std::numeric_limits<double>::infinity());
+  return cv;
+}
+
+/// Draws every element whose inner side faces the viewer, nearest in front, in the plot area.
+void draw_elements(Canvas& cv, const ElementField& field, const std::vector<Rgb>& colour,
+                   const OrthoCamera& camera, const ScreenFit& fit, int plot_w) {
+  const Vec3& d = camera.d;
+  const Vec3& r = camera.r;
+  const Vec3& u = camera.u;
+  const auto project = [&](const Vec3& p) {
+    const double x = fit.ox + (p.dot(r) - fit.cx) * fit.scale, y = fit.oy - (p.dot(u) - fit.cy) * fit.scale;
+    return ScreenPoint{std::llround(x * kSub), std::llround(y * kSub), p.dot(d)};
+  };
+  for (std::size_t i = 0; i < field.size(); ++i) {
+    if (!(field.inner_normal[i].dot(d) > 0.0)) continue;  // inner side turned away: a near wall
+    const auto& t = field.triangle[i];
+    fill_triangle(cv, project(t[0]), project(t[1]), project(t[2]), colour[i], kSamples * plot_w);
+  }
+}
+
+/// Colour bar right of the plot area: bottom = minimum, top = maximum, with a thin light frame.
+void draw_colour_bar(Canvas& cv, int W, int H, int plot_w) {
+  const int x0 = kSamples * (plot_w + std::max(4, (W - plot_w) / 3));
+  const int x1 = kSamples * (W - std::max(4, (W - plot_w) / 3));
+  const int y0 = kSamples * (H / 10), y1 = kSamples * (H - H / 10);
+  for (int y = y0 - 2; y < y1 + 2; ++y)
+    for (int x = x0 - 2; x < x1 + 2; ++x) {
+      const bool inside = y >= y0 && y < y1 && x >= x0 && x < x1;
+      const double t = 1.0 - (y + 0.5 - y0) / (y1 - y0);
+      cv.colour[static_cast<std::size_t>(y) * static_cast<std::size_t>(cv.w) +
+                static_cast<std::size_t>(x)] = inside ? colour_map(t) : Rgb{200, 200, 200};
+    }
+}
+
+/// The W x H RGB image: each pixel the rounded average of its kSamples x kSamples samples.
+std::vector<unsigned char> average_samples(const Canvas& cv, int W, int H) {
+  std::vector<unsigned char> image(3 * static_cast<std::size_t>(W) * static_cast<std::size_t>(H));
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x)
+      for (std::size_t c = 0; c < 3; ++c) {
+        int sum = 0;
+        for (int sy = 0; sy < kSamples; ++sy)
+          for (int sx = 0; sx < kSamples; ++sx)
+            sum += cv.colour[static_cast<std::size_t>(kSamples * y + sy) *
+                                 static_cast<std::size_t>(cv.w) +
+                             static_cast<std::size_t>(kSamples * x + sx)][c];
+        constexpr int kCount = kSamples * kSamples;
+        image[(static_cast<std::size_t>(y) * static_cast<std::size_t>(W) +
+               static_cast<std::size_t>(x)) * 3 + c] =
+            static_cast<unsigned char>((sum + kCount / 2) / kCount);
+      }
+  return image;
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
@@ -535,79 +640,18 @@ std::string radiosity_png(const ElementField& field, const RenderOptions& option
   check_options(options);
   const std::vector<Rgb> colour = colours_of_valid(field);
   const bool scalar = !is_rgb(field);
-
-  // Orthographic camera looking along -d; screen right r and up u with r x u = d.
-  const Vec3 d = options.view_direction.normalized();
-  const Vec3 up0 = std::abs(d.z()) > 1.0 - 1e-9 ? Vec3::UnitY() : Vec3::UnitZ();
-  const Vec3 r = up0.cross(d).normalized();
-  const Vec3 u = d.cross(r);
+  const OrthoCamera camera = camera_along(options.view_direction);
 
   // Scalar scenes keep the right eighth of the picture for the colour bar.
   const int W = options.width, H = options.height;
   const bool bar = scalar && W >= 24 && H >= 16;
   const int plot_w = bar ? W - std::max(12, W / 8) : W;
 
-  double xlo = std::numeric_limits<double>::infinity(), xhi = -xlo, ylo = xlo, yhi = -xlo;
-  for (const auto& tri : field.triangle)
-    for (const Vec3& p : tri) {
-      xlo = std::min(xlo, p.dot(r));
-      xhi = std::max(xhi, p.dot(r));
-      ylo = std::min(ylo, p.dot(u));
-      yhi = std::max(yhi, p.dot(u));
-    }
-  // Fit the projected box into the plot area with a 5% margin, keeping the aspect ratio.
-  const double sw = kSamples * plot_w * 0.9, sh = kSamples * H * 0.9;
-  const double bw = xhi - xlo, bh = yhi - ylo;
-  double scale = std::min(bw > 0.0 ? sw / bw : std::numeric_limits<double>::infinity(),
-                          bh > 0.0 ? sh / bh : std::numeric_limits<double>::infinity());
-  if (!std::isfinite(scale)) scale = 1.0;
-  const double cx = 0.5 * (xlo + xhi), cy = 0.5 * (ylo + yhi);
-  const double ox = 0.5 * kSamples * plot_w, oy = 0.5 * kSamples * H;
-
-  Canvas cv{kSamples * W, kSamples * H, {}, {}};
-  const std::size_t samples = static_cast<std::size_t>(cv.w) * static_cast<std::size_t>(cv.h);
-  cv.colour.assign(samples, kBackground);
-  cv.depth.assign(samples, -std::numeric_limits<double>::infinity());
-  const auto project = [&](const Vec3& p) {
-    const double x = ox + (p.dot(r) - cx) * scale, y = oy - (p.dot(u) - cy) * scale;
-    return ScreenPoint{std::llround(x * kSub), std::llround(y * kSub), p.dot(d)};
-  };
-  for (std::size_t i = 0; i < field.size(); ++i) {
-    if (!(field.inner_normal[i].dot(d) > 0.0)) continue;  // inner side turned away: a near wall
-    const auto& t = field.triangle[i];
-    fill_triangle(cv, project(t[0]), project(t[1]), project(t[2]), colour[i], kSamples * plot_w);
-  }
-
-  // Colour bar: bottom = minimum, top = maximum, with a thin light frame.
-  if (bar) {
-    const int x0 = kSamples * (plot_w + std::max(4, (W - plot_w) / 3));
-    const int x1 = kSamples * (W - std::max(4, (W - plot_w) / 3));
-    const int y0 = kSamples * (H / 10), y1 = kSamples * (H - H / 10);
-    for (int y = y0 - 2; y < y1 + 2; ++y)
-      for (int x = x0 - 2; x < x1 + 2; ++x) {
-        const bool inside = y >= y0 && y < y1 && x >= x0 && x < x1;
-        const double t = 1.0 - (y + 0.5 - y0) / (y1 - y0);
-        cv.colour[static_cast<std::size_t>(y) * static_cast<std::size_t>(cv.w) +
-                  static_cast<std::size_t>(x)] = inside ? colour_map(t) : Rgb{200, 200, 200};
-      }
-  }
-
-  // Average each pixel's 2x2 samples.
-  std::vector<unsigned char> image(3 * static_cast<std::size_t>(W) * static_cast<std::size_t>(H));
-  for (int y = 0; y < H; ++y)
-    for (int x = 0; x < W; ++x)
-      for (std::size_t c = 0; c < 3; ++c) {
-        int sum = 0;
-        for (int sy = 0; sy < kSamples; ++sy)
-          for (int sx = 0; sx < kSamples; ++sx)
-            sum += cv.colour[static_cast<std::size_t>(kSamples * y + sy) *
-                                 static_cast<std::size_t>(cv.w) +
-                             static_cast<std::size_t>(kSamples * x + sx)][c];
-        constexpr int kCount = kSamples * kSamples;
-        image[(static_cast<std::size_t>(y) * static_cast<std::size_t>(W) +
-               static_cast<std::size_t>(x)) * 3 + c] =
-            static_cast<unsigned char>((sum + kCount / 2) / kCount);
-      }
+  const ScreenFit fit = fit_to_plot(field, camera, plot_w, H);
+  Canvas cv = blank_canvas(W, H);
+  draw_elements(cv, field, colour, camera, fit, plot_w);
+  if (bar) draw_colour_bar(cv, W, H, plot_w);
+  const std::vector<unsigned char> image = average_samples(cv, W, H);
 
   std::string png;
   PngSink sink{&png, {}};
