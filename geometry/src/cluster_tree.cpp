@@ -192,6 +192,131 @@ double length(const Vec3& v) {
 
 constexpr int max_level = 15;  // n0 * 4^16 > 2^31 - 1 for every n0 >= 1
 
+/// n0, the number of level-0 triangles, after checking the level and the mesh's sizes.
+Index checked_root_count(const TriangleMesh& mesh, int finest_level, const std::string& name) {
+  if (finest_level < 0)
+    throw MeshError("cluster tree of " + name + ": level " + std::to_string(finest_level) + " is negative");
+  if (mesh.triangles.empty()) throw MeshError("cluster tree of " + name + ": the mesh has no triangles");
+  if (mesh.triangles.size() > static_cast<std::size_t>(std::numeric_limits<Index>::max()))
+    throw MeshError("cluster tree of " + name + ": too many triangles for 32-bit indices");
+  const Index n0 = static_cast<Index>(mesh.triangles.size());
+  if (mesh.facet_of_triangle.size() != mesh.triangles.size())
+    throw MeshError("cluster tree of " + name + ": " + std::to_string(mesh.facet_of_triangle.size()) +
+                    " facet ids for " + std::to_string(n0) + " triangles");
+  return n0;
+}
+
+/// Refuses a tree whose n = n0 4^L elements or whose clusters on all levels (< 4n/3) do not fit
+/// Index, and one whose estimated size exceeds memory_limit_bytes; before any allocation.
+void refuse_oversized_tree(Index n0, int finest_level, std::size_t memory_limit_bytes, const std::string& name) {
+  const long long index_max = std::numeric_limits<Index>::max();
+  long long clusters = 0;
+  for (int l = 0; l <= std::min(finest_level, max_level); ++l) clusters += static_cast<long long>(n0) << (2 * l);
+  if (finest_level > max_level || clusters > index_max) {
+    std::ostringstream msg;
+    msg << "cluster tree of " << name << ": level " << finest_level << " gives n = " << n0 << " * 4^"
+        << finest_level << " elements (" << std::ldexp(static_cast<double>(n0), 2 * finest_level)
+        << "), beyond the 32-bit index limit of " << index_max << " clusters";
+    throw MeshError(msg.str());
+  }
+  const std::size_t estimate = ClusterTree::estimate_bytes(n0, finest_level);
+  if (estimate > memory_limit_bytes) {
+    std::ostringstream msg;
+    msg << "cluster tree of " << name << ": level " << finest_level << " (n = " << (static_cast<long long>(n0) << (2 * finest_level))
+        << " elements) needs an estimated " << format_bytes(static_cast<double>(estimate)) << ", more than the "
+        << format_bytes(static_cast<double>(memory_limit_bytes)) << " of memory available; choose a lower level";
+    throw MeshError(msg.str());
+  }
+}
+
+/// Every triangle's facet id lies in [0, num_facets), its vertex indices in the vertex list, and
+/// the coordinates of those vertices are finite.
+void check_triangle_references(const TriangleMesh& mesh, Index n0, const std::string& name) {
+  for (Index k = 0; k < n0; ++k) {
+    const Index f = mesh.facet_of_triangle[static_cast<std::size_t>(k)];
+    if (f < 0 || f >= mesh.num_facets)
+      throw MeshError("cluster tree of " + name + ": triangle " + std::to_string(k) + " has facet id " +
+                      std::to_string(f) + " outside [0, " + std::to_string(mesh.num_facets) + ")");
+    for (Index v : mesh.triangles[static_cast<std::size_t>(k)]) {
+      if (v < 0 || static_cast<std::size_t>(v) >= mesh.vertices.size())
+        throw MeshError("cluster tree of " + name + ": triangle " + std::to_string(k) + " uses vertex " +
+                        std::to_string(v) + ", outside [0, " + std::to_string(mesh.vertices.size()) + ")");
+      if (!mesh.vertices[static_cast<std::size_t>(v)].allFinite())
+        throw MeshError("cluster tree of " + name + ": vertex " + std::to_string(v) + " " +
+                        describe(mesh.vertices[static_cast<std::size_t>(v)]) + " is not finite");
+    }
+  }
+}
+
+/// Root cluster k of T_{n_0}: triangle k of the mesh with its facet, circumcircle (41), inner
+/// normal (2) and area.
+void make_root(Cluster& c, const TriangleMesh& mesh, Index k, const std::string& name) {
+  const auto& t = mesh.triangles[static_cast<std::size_t>(k)];
+  for (int i = 0; i < 3; ++i) c.vertex[static_cast<std::size_t>(i)] = mesh.vertices[static_cast<std::size_t>(t[static_cast<std::size_t>(i)])];
+  c.facet = mesh.facet_of_triangle[static_cast<std::size_t>(k)];
+  circumcircle(c.vertex[0], c.vertex[1], c.vertex[2], c.centre, c.radius, "level 0", k);
+  // Outward normal w = (b - a) x (c - a) (counter-clockwise seen from outside): exact, each
+  // component rounded once; the inner normal (2) is -w / |w|. Area |w| / 2 rounded once.
+  const ExactVec ea = exact(c.vertex[0]);
+  const ExactVec w = cross(exact(c.vertex[1]) - ea, exact(c.vertex[2]) - ea);
+  const Vec3 wd(round_quotient(w.x, Mpzf(1)), round_quotient(w.y, Mpzf(1)), round_quotient(w.z, Mpzf(1)));
+  c.area = round_sqrt_quotient(dot(w, w), Mpzf(4));
+  if (!wd.allFinite() || (wd.array() == 0.0).all() || !(c.area > 0) || !std::isfinite(c.area))
+    throw MeshError("cluster tree of " + name + ": triangle " + std::to_string(k) +
+                    ": normal or area outside the double range (corners " + describe(c.vertex[0]) + ", " +
+                    describe(c.vertex[1]) + ", " + describe(c.vertex[2]) + ")");
+  int e = 0;
+  const Vec3 ws = scaled_to_unit_range(wd, e);  // exact power-of-two scaling: no under/overflow
+  c.normal = -ws / ws.norm();
+}
+
+/// Level l+1 from level l (39)-(40): children 4k .. 4k+3 of triangle k are its midpoint
+/// subdivision, with the parent's plane, facet and a quarter of its area.
+void subdivide_level(const std::vector<Cluster>& parents, std::vector<Cluster>& children, int child_level) {
+  children.resize(parents.size() * 4);
+  const std::string where = "level " + std::to_string(child_level);
+  parallel_for(static_cast<Index>(parents.size()), [&](Index k) {
+    const Cluster& p = parents[static_cast<std::size_t>(k)];
+    const std::array<std::array<Vec3, 3>, 4> corners = midpoint_subdivision(p.vertex[0], p.vertex[1], p.vertex[2]);
+    for (std::size_t j = 0; j < 4; ++j) {
+      const Index id = 4 * k + static_cast<Index>(j);
+      Cluster& child = children[static_cast<std::size_t>(id)];
+      child.vertex = corners[j];
+      child.normal = p.normal;
+      child.area = p.area * 0.25;  // exact (no underflow for any area of a double triangle we accept)
+      child.facet = p.facet;
+      circumcircle(child.vertex[0], child.vertex[1], child.vertex[2], child.centre, child.radius, where.c_str(), id);
+    }
+  });
+}
+
+/// Collocation points P_k (22): the centroids (a + b + c) / 3 of the elements, exact and rounded once.
+std::vector<Vec3> element_centroids(const std::vector<Cluster>& leaves) {
+  const Index n = static_cast<Index>(leaves.size());
+  std::vector<Vec3> centroid(static_cast<std::size_t>(n));
+  parallel_for(n, [&](Index k) {
+    const Cluster& e = leaves[static_cast<std::size_t>(k)];
+    const Mpzf three(3);
+    Vec3 g;
+    for (int i = 0; i < 3; ++i)  // (a + b + c) / 3, exact and rounded once
+      g[i] = round_quotient(Mpzf(e.vertex[0][i]) + Mpzf(e.vertex[1][i]) + Mpzf(e.vertex[2][i]), three);
+    centroid[static_cast<std::size_t>(k)] = g;
+  });
+  return centroid;
+}
+
+/// Mesh size h: the longest edge of the elements (section 3).
+double longest_edge(const std::vector<Cluster>& leaves) {
+  const Index n = static_cast<Index>(leaves.size());
+  double h = 0;
+#pragma omp parallel for schedule(static) reduction(max : h)
+  for (Index k = 0; k < n; ++k) {
+    const auto& v = leaves[static_cast<std::size_t>(k)].vertex;
+    h = std::max({h, length(v[1] - v[0]), length(v[2] - v[1]), length(v[0] - v[2])});
+  }
+  return h;
+}
+
 }  // namespace
 
 std::size_t ClusterTree::default_memory_limit() {
@@ -226,48 +351,9 @@ ClusterTree::ClusterTree(const TriangleMesh& mesh, int finest_level)
 ClusterTree::ClusterTree(const TriangleMesh& mesh, int finest_level, std::size_t memory_limit_bytes) {
   const std::string name = mesh.source.empty() ? std::string("mesh") : "mesh '" + mesh.source + "'";
   // --- checks before any allocation --------------------------------------------------------------
-  if (finest_level < 0)
-    throw MeshError("cluster tree of " + name + ": level " + std::to_string(finest_level) + " is negative");
-  if (mesh.triangles.empty()) throw MeshError("cluster tree of " + name + ": the mesh has no triangles");
-  if (mesh.triangles.size() > static_cast<std::size_t>(std::numeric_limits<Index>::max()))
-    throw MeshError("cluster tree of " + name + ": too many triangles for 32-bit indices");
-  const Index n0 = static_cast<Index>(mesh.triangles.size());
-  if (mesh.facet_of_triangle.size() != mesh.triangles.size())
-    throw MeshError("cluster tree of " + name + ": " + std::to_string(mesh.facet_of_triangle.size()) +
-                    " facet ids for " + std::to_string(n0) + " triangles");
-  // n = n0 4^L and the number of clusters on all levels (< 4n/3) must fit Index.
-  const long long index_max = std::numeric_limits<Index>::max();
-  long long clusters = 0;
-  for (int l = 0; l <= std::min(finest_level, max_level); ++l) clusters += static_cast<long long>(n0) << (2 * l);
-  if (finest_level > max_level || clusters > index_max) {
-    std::ostringstream msg;
-    msg << "cluster tree of " << name << ": level " << finest_level << " gives n = " << n0 << " * 4^"
-        << finest_level << " elements (" << std::ldexp(static_cast<double>(n0), 2 * finest_level)
-        << "), beyond the 32-bit index limit of " << index_max << " clusters";
-    throw MeshError(msg.str());
-  }
-  const std::size_t estimate = estimate_bytes(n0, finest_level);
-  if (estimate > memory_limit_bytes) {
-    std::ostringstream msg;
-    msg << "cluster tree of " << name << ": level " << finest_level << " (n = " << (static_cast<long long>(n0) << (2 * finest_level))
-        << " elements) needs an estimated " << format_bytes(static_cast<double>(estimate)) << ", more than the "
-        << format_bytes(static_cast<double>(memory_limit_bytes)) << " of memory available; choose a lower level";
-    throw MeshError(msg.str());
-  }
-  for (Index k = 0; k < n0; ++k) {
-    const Index f = mesh.facet_of_triangle[static_cast<std::size_t>(k)];
-    if (f < 0 || f >= mesh.num_facets)
-      throw MeshError("cluster tree of " + name + ": triangle " + std::to_string(k) + " has facet id " +
-                      std::to_string(f) + " outside [0, " + std::to_string(mesh.num_facets) + ")");
-    for (Index v : mesh.triangles[static_cast<std::size_t>(k)]) {
-      if (v < 0 || static_cast<std::size_t>(v) >= mesh.vertices.size())
-        throw MeshError("cluster tree of " + name + ": triangle " + std::to_string(k) + " uses vertex " +
-                        std::to_string(v) + ", outside [0, " + std::to_string(mesh.vertices.size()) + ")");
-      if (!mesh.vertices[static_cast<std::size_t>(v)].allFinite())
-        throw MeshError("cluster tree of " + name + ": vertex " + std::to_string(v) + " " +
-                        describe(mesh.vertices[static_cast<std::size_t>(v)]) + " is not finite");
-    }
-  }
+  const Index n0 = checked_root_count(mesh, finest_level, name);
+  refuse_oversized_tree(n0, finest_level, memory_limit_bytes, name);
+  check_triangle_references(mesh, n0, name);
 
   finest_level_ = finest_level;
   n0_ = n0;
@@ -277,67 +363,15 @@ ClusterTree::ClusterTree(const TriangleMesh& mesh, int finest_level, std::size_t
   // --- level 0: the mesh's triangles, in mesh order ----------------------------------------------
   std::vector<Cluster>& roots = levels_[0];
   roots.resize(static_cast<std::size_t>(n0));
-  parallel_for(n0, [&](Index k) {
-    Cluster& c = roots[static_cast<std::size_t>(k)];
-    const auto& t = mesh.triangles[static_cast<std::size_t>(k)];
-    for (int i = 0; i < 3; ++i) c.vertex[static_cast<std::size_t>(i)] = mesh.vertices[static_cast<std::size_t>(t[static_cast<std::size_t>(i)])];
-    c.facet = mesh.facet_of_triangle[static_cast<std::size_t>(k)];
-    circumcircle(c.vertex[0], c.vertex[1], c.vertex[2], c.centre, c.radius, "level 0", k);
-    // Outward normal w = (b - a) x (c - a) (counter-clockwise seen from outside): exact, each
-    // component rounded once; the inner normal (2) is -w / |w|. Area |w| / 2 rounded once.
-    const ExactVec ea = exact(c.vertex[0]);
-    const ExactVec w = cross(exact(c.vertex[1]) - ea, exact(c.vertex[2]) - ea);
-    const Vec3 wd(round_quotient(w.x, Mpzf(1)), round_quotient(w.y, Mpzf(1)), round_quotient(w.z, Mpzf(1)));
-    c.area = round_sqrt_quotient(dot(w, w), Mpzf(4));
-    if (!wd.allFinite() || (wd.array() == 0.0).all() || !(c.area > 0) || !std::isfinite(c.area))
-      throw MeshError("cluster tree of " + name + ": triangle " + std::to_string(k) +
-                      ": normal or area outside the double range (corners " + describe(c.vertex[0]) + ", " +
-                      describe(c.vertex[1]) + ", " + describe(c.vertex[2]) + ")");
-    int e = 0;
-    const Vec3 ws = scaled_to_unit_range(wd, e);  // exact power-of-two scaling: no under/overflow
-    c.normal = -ws / ws.norm();
-  });
+  parallel_for(n0, [&](Index k) { make_root(roots[static_cast<std::size_t>(k)], mesh, k, name); });
 
-  // --- level l+1 from level l: children 4k .. 4k+3 of triangle k ---------------------------------
-  for (int l = 0; l < finest_level; ++l) {
-    const std::vector<Cluster>& parents = levels_[static_cast<std::size_t>(l)];
-    std::vector<Cluster>& children = levels_[static_cast<std::size_t>(l) + 1];
-    children.resize(parents.size() * 4);
-    const std::string where = "level " + std::to_string(l + 1);
-    parallel_for(static_cast<Index>(parents.size()), [&](Index k) {
-      const Cluster& p = parents[static_cast<std::size_t>(k)];
-      const std::array<std::array<Vec3, 3>, 4> corners = midpoint_subdivision(p.vertex[0], p.vertex[1], p.vertex[2]);
-      for (std::size_t j = 0; j < 4; ++j) {
-        const Index id = 4 * k + static_cast<Index>(j);
-        Cluster& child = children[static_cast<std::size_t>(id)];
-        child.vertex = corners[j];
-        child.normal = p.normal;
-        child.area = p.area * 0.25;  // exact (no underflow for any area of a double triangle we accept)
-        child.facet = p.facet;
-        circumcircle(child.vertex[0], child.vertex[1], child.vertex[2], child.centre, child.radius, where.c_str(), id);
-      }
-    });
-  }
+  // --- level l+1 from level l, (39)-(40) ---------------------------------------------------------
+  for (int l = 0; l < finest_level; ++l)
+    subdivide_level(levels_[static_cast<std::size_t>(l)], levels_[static_cast<std::size_t>(l) + 1], l + 1);
 
   // --- collocation points (22), mesh size, diameter ----------------------------------------------
-  const std::vector<Cluster>& leaves = levels_.back();
-  const Index n = static_cast<Index>(leaves.size());
-  centroid_.resize(static_cast<std::size_t>(n));
-  double h = 0;
-  parallel_for(n, [&](Index k) {
-    const Cluster& e = leaves[static_cast<std::size_t>(k)];
-    const Mpzf three(3);
-    Vec3 g;
-    for (int i = 0; i < 3; ++i)  // (a + b + c) / 3, exact and rounded once
-      g[i] = round_quotient(Mpzf(e.vertex[0][i]) + Mpzf(e.vertex[1][i]) + Mpzf(e.vertex[2][i]), three);
-    centroid_[static_cast<std::size_t>(k)] = g;
-  });
-#pragma omp parallel for schedule(static) reduction(max : h)
-  for (Index k = 0; k < n; ++k) {
-    const auto& v = leaves[static_cast<std::size_t>(k)].vertex;
-    h = std::max({h, length(v[1] - v[0]), length(v[2] - v[1]), length(v[0] - v[2])});
-  }
-  mesh_size_ = h;
+  centroid_ = element_centroids(levels_.back());
+  mesh_size_ = longest_edge(levels_.back());
   diameter_ = bounding_box_diameter(roots | std::views::transform(&Cluster::vertex) | std::views::join);
 }
 

@@ -246,12 +246,17 @@ bool off_keyword(std::string_view token, const std::string& name, long line) {
   return true;
 }
 
-TriangleMesh parse_off(const std::string& text, const std::string& name, std::vector<std::string>* notes) {
-  if (text.empty()) fail(name, 0, "empty file");
-  LineCursor cursor(text, name, false);
-  Line l;
-  if (!cursor.next(l)) fail(name, 0, "empty file (no data, only blank lines or comments)");
+/// The counts of an OFF header: vertices, faces, and the line they stand on.
+struct OffCounts {
+  long long vertices = 0;
+  long long faces = 0;
+  long line = 0;
+};
 
+/// The header: the optional keyword [ST][C][N]OFF and the counts 'vertices faces [edges]', on
+/// the keyword's line or the next content line. `first` is the file's first content line.
+OffCounts read_off_header(LineCursor& cursor, Line& first, const std::string& name) {
+  Line& l = first;
   std::vector<std::string_view> counts;
   long counts_line = l.number;
   if (off_keyword(l.tokens[0], name, l.number)) {
@@ -277,17 +282,20 @@ TriangleMesh parse_off(const std::string& text, const std::string& name, std::ve
   for (std::size_t i = 0; i < counts.size(); ++i)
     if (!parse_integer(counts[i], count[i]) || count[i] < 0 || count[i] > kMaxCount)
       fail(name, counts_line, "bad count " + show(counts[i]) + " (expected a non-negative integer)");
-  const long long nv = count[0];
-  const long long nf = count[1];
-  if (nv == 0) fail(name, counts_line, "empty mesh: the header declares 0 vertices");
-  if (nf == 0) fail(name, counts_line, "empty mesh: the header declares 0 faces");
+  if (count[0] == 0) fail(name, counts_line, "empty mesh: the header declares 0 vertices");
+  if (count[1] == 0) fail(name, counts_line, "empty mesh: the header declares 0 faces");
+  return {count[0], count[1], counts_line};
+}
 
-  RawMesh raw;
-  for (long long v = 0; v < nv; ++v) {
+/// The vertex list: one line 'x y z' per vertex, optionally followed by normal, colour and
+/// texture values (checked to be numbers, not used).
+void read_off_vertices(LineCursor& cursor, const OffCounts& counts, const std::string& name, RawMesh& raw) {
+  Line l;
+  for (long long v = 0; v < counts.vertices; ++v) {
     if (!cursor.next(l))
       fail(name, cursor.last_content_line(),
-           "truncated file: the header (line " + std::to_string(counts_line) + ") declares " +
-               std::to_string(nv) + " vertices, the file ends after " + std::to_string(v));
+           "truncated file: the header (line " + std::to_string(counts.line) + ") declares " +
+               std::to_string(counts.vertices) + " vertices, the file ends after " + std::to_string(v));
     const std::string what = "vertex " + std::to_string(v);
     if (l.tokens.size() < 3)
       fail(name, l.number, what + " has " + std::to_string(l.tokens.size()) + " values, needs x y z");
@@ -300,42 +308,65 @@ TriangleMesh parse_off(const std::string& text, const std::string& name, std::ve
     for (std::size_t t = 3; t < l.tokens.size(); ++t) any_number(l.tokens[t], name, l.number, what.c_str());
     raw.vertices.push_back(p);
   }
+}
+
+/// Face f on line l: 'k i_1 .. i_k' with k >= 3 indices into the nv vertices, optionally followed
+/// by a colour (at most 4 numbers, checked, not used); the indices go into `face`.
+void read_off_face(const Line& l, long long f, long long nv, const std::string& name, std::vector<Index>& face) {
+  const std::string what = "face " + std::to_string(f);
+  long long k = 0;
+  if (!parse_integer(l.tokens[0], k))
+    fail(name, l.number, what + ": bad vertex count " + show(l.tokens[0]));
+  if (k < 3) fail(name, l.number, what + " has " + std::to_string(k) + " vertices; a face needs at least 3");
+  if (static_cast<long long>(l.tokens.size()) - 1 < k)
+    fail(name, l.number, what + " declares " + std::to_string(k) + " vertices but lists " +
+                             std::to_string(l.tokens.size() - 1));
+  const std::size_t extra = l.tokens.size() - 1 - static_cast<std::size_t>(k);
+  if (extra > 4)
+    fail(name, l.number, what + " has " + std::to_string(extra) +
+                             " values after its indices (a colour takes at most 4)");
+  face.clear();
+  for (long long i = 1; i <= k; ++i) {
+    const std::string_view tok = l.tokens[static_cast<std::size_t>(i)];
+    long long idx = 0;
+    if (!parse_integer(tok, idx)) fail(name, l.number, what + ": bad vertex index " + show(tok));
+    if (idx < 0 || idx >= nv)
+      fail(name, l.number, what + ": vertex index " + std::to_string(idx) + " out of range [0, " +
+                               std::to_string(nv - 1) + "]");
+    face.push_back(static_cast<Index>(idx));
+  }
+  for (std::size_t t = 1 + static_cast<std::size_t>(k); t < l.tokens.size(); ++t)
+    any_number(l.tokens[t], name, l.number, (what + " colour").c_str());
+}
+
+/// The face list: one line per face, in file order (face i -> facet i).
+void read_off_faces(LineCursor& cursor, const OffCounts& counts, const std::string& name, RawMesh& raw) {
+  Line l;
   std::vector<Index> face;
-  for (long long f = 0; f < nf; ++f) {
+  for (long long f = 0; f < counts.faces; ++f) {
     if (!cursor.next(l))
       fail(name, cursor.last_content_line(),
-           "truncated file: the header (line " + std::to_string(counts_line) + ") declares " +
-               std::to_string(nf) + " faces, the file ends after " + std::to_string(f));
-    const std::string what = "face " + std::to_string(f);
-    long long k = 0;
-    if (!parse_integer(l.tokens[0], k))
-      fail(name, l.number, what + ": bad vertex count " + show(l.tokens[0]));
-    if (k < 3) fail(name, l.number, what + " has " + std::to_string(k) + " vertices; a face needs at least 3");
-    if (static_cast<long long>(l.tokens.size()) - 1 < k)
-      fail(name, l.number, what + " declares " + std::to_string(k) + " vertices but lists " +
-                               std::to_string(l.tokens.size() - 1));
-    const std::size_t extra = l.tokens.size() - 1 - static_cast<std::size_t>(k);
-    if (extra > 4)
-      fail(name, l.number, what + " has " + std::to_string(extra) +
-                               " values after its indices (a colour takes at most 4)");
-    face.clear();
-    for (long long i = 1; i <= k; ++i) {
-      const std::string_view tok = l.tokens[static_cast<std::size_t>(i)];
-      long long idx = 0;
-      if (!parse_integer(tok, idx)) fail(name, l.number, what + ": bad vertex index " + show(tok));
-      if (idx < 0 || idx >= nv)
-        fail(name, l.number, what + ": vertex index " + std::to_string(idx) + " out of range [0, " +
-                                 std::to_string(nv - 1) + "]");
-      face.push_back(static_cast<Index>(idx));
-    }
-    for (std::size_t t = 1 + static_cast<std::size_t>(k); t < l.tokens.size(); ++t)
-      any_number(l.tokens[t], name, l.number, (what + " colour").c_str());
+           "truncated file: the header (line " + std::to_string(counts.line) + ") declares " +
+               std::to_string(counts.faces) + " faces, the file ends after " + std::to_string(f));
+    read_off_face(l, f, counts.vertices, name, face);
     add_face(raw, face, l.number);
   }
+}
+
+TriangleMesh parse_off(const std::string& text, const std::string& name, std::vector<std::string>* notes) {
+  if (text.empty()) fail(name, 0, "empty file");
+  LineCursor cursor(text, name, false);
+  Line l;
+  if (!cursor.next(l)) fail(name, 0, "empty file (no data, only blank lines or comments)");
+  const OffCounts counts = read_off_header(cursor, l, name);
+
+  RawMesh raw;
+  read_off_vertices(cursor, counts, name, raw);
+  read_off_faces(cursor, counts, name, raw);
   if (cursor.next(l))
     fail(name, l.number,
-         "unexpected data after the last face (the header declares " + std::to_string(nv) +
-             " vertices and " + std::to_string(nf) + " faces): " + show(l.tokens[0]));
+         "unexpected data after the last face (the header declares " + std::to_string(counts.vertices) +
+             " vertices and " + std::to_string(counts.faces) + " faces): " + show(l.tokens[0]));
   return build_mesh(raw, name, notes);
 }
 
