@@ -25,7 +25,6 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <ranges>
 #include <sstream>
 #include <string>
 
@@ -372,7 +371,10 @@ ClusterTree::ClusterTree(const TriangleMesh& mesh, int finest_level, std::size_t
   // --- collocation points (22), mesh size, diameter ----------------------------------------------
   centroid_ = element_centroids(levels_.back());
   mesh_size_ = longest_edge(levels_.back());
-  diameter_ = bounding_box_diameter(roots | std::views::transform(&Cluster::vertex) | std::views::join);
+  std::vector<Vec3> corners;  // of the level-0 triangles: the surface's bounding box
+  corners.reserve(3 * roots.size());
+  for (const Cluster& root : roots) corners.insert(corners.end(), root.vertex.begin(), root.vertex.end());
+  diameter_ = bounding_box_diameter(corners);
 }
 
 }  // namespace panelrad::geometry

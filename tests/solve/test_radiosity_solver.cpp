@@ -1,6 +1,7 @@
 // The solver object (radiosity_solver.hpp): one setup, many right-hand sides; the same answers as
 // the one-shot solve_scene; iterations out of steps keep their iterate; the fast operator's
-// self-check and the one tighten loop; the options vocabulary; the one rule for rho and E.
+// self-check and the one tighten loop; the options vocabulary; the one rule for rho and E at the
+// collocation points (the rule on the scene itself: tests/scene/test_scene.cpp).
 #include <panelrad/geometry/builtin_scenes.hpp>
 #include <panelrad/geometry/validation.hpp>
 #include <panelrad/operator/auto_parameters.hpp>
@@ -311,27 +312,8 @@ void expect_names(const std::string& msg, const std::vector<std::string>& parts)
 
 }  // namespace
 
-// One rule (reflectivity_problem, emission_problem) for per-facet data when it is set ...
-TEST(RadiositySolver, OneValidatorForPerFacetData) {
-  Scene scene(valid_cube(), {"R", "G"});
-  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
-  for (const double bad : {1.0, -0.1, nan}) {
-    std::vector<double> rho(6, 0.5);
-    rho[4] = bad;
-    expect_names(refusal([&] { scene.set_reflectivity(rho, 1); }),
-                 {"reflectivity rho", "facet 4", "channel G", reflectivity_problem(bad)});
-  }
-  for (const double bad : {inf, -1.0}) {
-    std::vector<double> e(6, 1.0);
-    e[2] = bad;
-    expect_names(refusal([&] { scene.set_emissivity(e, 0); }), {"emission E", "facet 2", "channel R", emission_problem(bad)});
-  }
-  EXPECT_EQ(scene.facet_reflectivity(1), std::vector<double>(6, 0.0));  // a refused value changes nothing
-  EXPECT_NE(reflectivity_problem(1.0).find("[0, 1)"), std::string::npos);
-  EXPECT_NE(emission_problem(-1.0).find(">= 0"), std::string::npos);
-}
-
-// ... and for functions where they are evaluated: at the collocation points.
+// The one rule for functions where they are evaluated: at the collocation points (per-facet data:
+// tests/scene/test_scene.cpp).
 TEST(RadiositySolver, OneValidatorForFunctionsAtCollocationPoints) {
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
   RadiositySolverOptions o;

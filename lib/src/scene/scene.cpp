@@ -102,7 +102,8 @@ Scene Scene::load(const std::string& path_or_builtin, std::vector<std::string>* 
 
 const Scene::Channel& Scene::channel(std::size_t c) const {
   if (c >= data_.size())
-    throw std::out_of_range("scene: channel " + std::to_string(c) + " of " + std::to_string(data_.size()));
+    throw std::out_of_range("scene: there is no channel " + std::to_string(c) + "; the scene has " +
+                            std::to_string(data_.size()) + " (0 to " + std::to_string(data_.size() - 1) + ")");
   return data_[c];
 }
 

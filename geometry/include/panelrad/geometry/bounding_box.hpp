@@ -4,7 +4,6 @@
 // times it.
 #include <panelrad/geometry/mesh.hpp>
 
-#include <ranges>
 
 namespace panelrad::geometry {
 
@@ -17,19 +16,21 @@ namespace panelrad::geometry {
 double overflow_free_length(const Vec3& v);
 
 /// The diagonal |hi - lo| (overflow_free_length) of the bounding box [lo, hi] of the points,
-/// lo and hi their componentwise minimum and maximum; 0 for no points.
-template <std::ranges::input_range Points>
-double bounding_box_diameter(Points&& points) {
-  auto it = std::ranges::begin(points);
-  const auto end = std::ranges::end(points);
-  if (it == end) return 0;
-  Vec3 lo = *it, hi = lo;
-  for (; it != end; ++it) {
-    const Vec3& v = *it;
+/// lo and hi their componentwise minimum and maximum; 0 for no points. `points`: any container
+/// of Vec3 that a range-for can traverse.
+template <class Points>
+double bounding_box_diameter(const Points& points) {
+  bool first = true;
+  Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();
+  for (const Vec3& v : points) {
+    if (first) {
+      lo = hi = v;
+      first = false;
+    }
     lo = lo.cwiseMin(v);
     hi = hi.cwiseMax(v);
   }
-  return overflow_free_length(hi - lo);
+  return first ? 0.0 : overflow_free_length(hi - lo);
 }
 
 }  // namespace panelrad::geometry
