@@ -121,45 +121,34 @@ void check_solve_options(const CLI::App& app, SolveCommandLine& line) {
   check_prefix(line.prefix);  // given or derived from SCENE
 }
 
-int run_solve(const CLI::App& app, const SolveCommandLine& command_line) {
-  const std::string& scene_path = command_line.scene_path;
-  const std::string& prefix = command_line.prefix;
-  const std::string& materials = command_line.materials;
-  const std::set<std::string>& wanted = command_line.wanted;
-  const bool quiet = command_line.quiet, max_given = app.count("--max-elements") > 0;
-  RadiositySolverOptions o = command_line.o;
-  const int threads = command_line.threads;
-  std::vector<std::string> outputs;  // PREFIX.<format>, in writing order
-  for (const char* f : {"csv", "ply", "vtk", "png"})
-    if (wanted.count(f)) outputs.push_back(prefix + "." + f);
-  // SIGINT/SIGTERM/SIGHUP remove the outputs' temporaries and end the run (status 128 + signal).
-  install_output_signal_handlers();
-  set_threads(threads);
-  if (!quiet) o.progress = [](const std::string& line) { std::cerr << "panelrad solve: " << line << "\n"; };
-
-  const Scene scene = load_channel_scene(scene_path, materials);  // errors: exit 1 (main)
-  if (!quiet)
+/// The scene, with what loading did on stderr (unless quiet), and a note when --max-elements is
+/// below n0 (said even when quiet: the run then does not do what was asked).
+Scene load_scene(const SolveCommandLine& line, bool max_given) {
+  const Scene scene = load_channel_scene(line.scene_path, line.materials);  // errors: exit 1 (main)
+  if (!line.quiet)
     for (const std::string& note : scene.notes()) std::cerr << "panelrad solve: note: " << note << "\n";
-  // --max-elements N below n0: no level has n <= N, so level 0 (n = n0) is solved; said even
-  // with --quiet, since the run then does not do what was asked.
-  if (o.level < 0 && static_cast<long long>(scene.mesh().triangles.size()) > o.max_elements)
+  if (line.o.level < 0 && static_cast<long long>(scene.mesh().triangles.size()) > line.o.max_elements)
     std::cerr << "panelrad solve: note: " << (max_given ? "--max-elements " : "the default --max-elements ")
-              << o.max_elements << " is below the scene's " << scene.mesh().triangles.size()
+              << line.o.max_elements << " is below the scene's " << scene.mesh().triangles.size()
               << " triangles (n0): solving level 0, n = " << scene.mesh().triangles.size() << "\n";
-  // Everything about the outputs that can be checked is checked before a long run, not after it:
-  // the channel names as CSV columns, and that each output's directory takes a new file (a
-  // uniquely named temporary, removed again) and the output is not a directory.
+  return scene;
+}
+
+/// Everything about the outputs that can be checked is checked before a long run, not after it:
+/// the channel names as CSV columns, and that each output's directory takes a new file (a
+/// uniquely named temporary, removed again) and the output is not a directory.
+void check_outputs(const Scene& scene, const std::string& scene_path, const std::vector<std::string>& outputs) {
   try {
     check_channel_names(scene.channels());
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(scene_path + ": " + e.what());
   }
   for (const std::string& path : outputs) check_output_path(path);
+}
 
-  const SceneSolution s = solve_scene(scene, o);
-  require_converged(s);  // a channel out of iterations: exit 1 with the SolverError's message, no outputs
-  // All outputs are written to temporaries first and replace the previous ones only when every
-  // one was written: a failure (or SIGINT/SIGTERM) leaves the previous set untouched.
+/// All outputs are written to temporaries first and replace the previous ones only when every
+/// one was written: a failure (or SIGINT/SIGTERM) leaves the previous set untouched.
+void write_outputs(const SceneSolution& s, const std::vector<std::string>& outputs) {
   OutputSet set;
   for (const std::string& path : outputs) {
     const std::string format = path.substr(path.size() - 3);
@@ -173,9 +162,10 @@ int run_solve(const CLI::App& app, const SolveCommandLine& command_line) {
     }
   }
   set.commit();
-  const std::vector<std::string>& written = outputs;
+}
 
-  // Summary.
+/// The summary on stdout: size, method, self-check, times, each channel's energy balance.
+void print_summary(const Scene& scene, const std::string& scene_path, const SceneSolution& s) {
   std::printf("scene %s: %d facets, %zu channel%s\n", scene_path.c_str(), static_cast<int>(scene.mesh().num_facets),
               scene.num_channels(), scene.num_channels() > 1 ? "s" : "");
   std::printf("n = %d (level %d), h/diam = %.3e, %s\n", static_cast<int>(s.n), s.level, s.mesh_size / s.diameter,
@@ -200,8 +190,27 @@ int run_solve(const CLI::App& app, const SolveCommandLine& command_line) {
   }
   std::printf("energy balance: emitted = absorbed on a closed convex scene; mismatch expected below 0.5 h/diam = %.2e\n",
               s.expected_energy_mismatch);
+}
+
+int run_solve(const CLI::App& app, const SolveCommandLine& command_line) {
+  RadiositySolverOptions o = command_line.o;
+  std::vector<std::string> outputs;  // PREFIX.<format>, in writing order
+  for (const char* f : {"csv", "ply", "vtk", "png"})
+    if (command_line.wanted.count(f)) outputs.push_back(command_line.prefix + "." + f);
+  // SIGINT/SIGTERM/SIGHUP remove the outputs' temporaries and end the run (status 128 + signal).
+  install_output_signal_handlers();
+  set_threads(command_line.threads);
+  if (!command_line.quiet) o.progress = [](const std::string& line) { std::cerr << "panelrad solve: " << line << "\n"; };
+
+  const Scene scene = load_scene(command_line, app.count("--max-elements") > 0);
+  check_outputs(scene, command_line.scene_path, outputs);
+  const SceneSolution s = solve_scene(scene, o);
+  require_converged(s);  // a channel out of iterations: exit 1 with the SolverError's message, no outputs
+  write_outputs(s, outputs);
+
+  print_summary(scene, command_line.scene_path, s);
   for (const std::string& w : s.warnings) std::fprintf(stderr, "panelrad solve: warning: %s\n", w.c_str());
-  for (const std::string& f : written) std::printf("wrote %s\n", f.c_str());
+  for (const std::string& f : outputs) std::printf("wrote %s\n", f.c_str());
   return 0;
 }
 

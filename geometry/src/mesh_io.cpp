@@ -402,6 +402,99 @@ std::string unknown_obj_statement(std::string_view key) {
   return "unknown OBJ statement " + show(key);
 }
 
+/// Vertex references of the faces read so far, each checked against the final vertex count once
+/// the whole file is read (0-based, negative references already resolved), with their lines.
+struct ObjPendingIndices {
+  std::vector<long long> index;
+  std::vector<long> line;
+};
+
+/// A "v x y z [w | r g b]" line: the vertex's coordinates (the other values must be numbers).
+void read_obj_vertex(const Line& l, const std::string& name, RawMesh& raw) {
+  const std::string what = "vertex " + std::to_string(raw.vertices.size() + 1);
+  const std::size_t n = l.tokens.size() - 1;
+  if (n < 3 || n > 7) fail(name, l.number, what + " has " + std::to_string(n) + " values (expected x y z [w | r g b])");
+  Vec3 p;
+  for (int c = 0; c < 3; ++c) p[c] = coordinate(l.tokens[static_cast<std::size_t>(c) + 1], name, l.number, what.c_str());
+  for (std::size_t t = 4; t < l.tokens.size(); ++t) any_number(l.tokens[t], name, l.number, what.c_str());
+  raw.vertices.push_back(p);
+}
+
+/// One vertex reference of a face, v, v/vt, v//vn or v/vt/vn: the 0-based vertex index (-1 is the
+/// last vertex defined before this line); texture and normal indices must be integers.
+long long obj_vertex_index(std::string_view ref, const Line& l, const std::string& name, const std::string& what,
+                           long long defined) {
+  std::array<std::string_view, 3> parts{};
+  std::size_t np = 0;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t slash = ref.find('/', start);
+    if (np == 3) fail(name, l.number, what + ": bad vertex reference " + show(ref));
+    parts[np++] = ref.substr(start, slash == std::string_view::npos ? std::string_view::npos : slash - start);
+    if (slash == std::string_view::npos) break;
+    start = slash + 1;
+  }
+  long long idx = 0;
+  if (!parse_integer(parts[0], idx) || idx == 0)
+    fail(name, l.number, what + ": bad vertex reference " + show(ref) +
+                             " (expected v, v/vt, v//vn or v/vt/vn with a non-zero integer v)");
+  for (std::size_t p = 1; p < np; ++p) {
+    long long other = 0;
+    if (!parts[p].empty() && !parse_integer(parts[p], other)) fail(name, l.number, what + ": bad vertex reference " + show(ref));
+  }
+  if (idx < 0) {
+    if (-idx > defined)
+      fail(name, l.number, what + ": relative vertex index " + std::to_string(idx) + " but only " +
+                               std::to_string(defined) + " vertices are defined before this line");
+    return defined + idx;
+  }
+  --idx;
+  if (idx > kMaxCount) fail(name, l.number, what + ": vertex index " + show(parts[0]) + " out of range");
+  return idx;
+}
+
+/// An "f v1 v2 v3 ..." line: the face, its references kept for the final range check.
+void read_obj_face(const Line& l, const std::string& name, RawMesh& raw, ObjPendingIndices& pending,
+                   std::vector<Index>& face) {
+  const std::string what = "face " + std::to_string(raw.face_lines.size() + 1);
+  const std::size_t n = l.tokens.size() - 1;
+  if (n < 3) fail(name, l.number, what + " has " + std::to_string(n) + " vertices; a face needs at least 3");
+  face.clear();
+  const auto defined = static_cast<long long>(raw.vertices.size());
+  for (std::size_t t = 1; t <= n; ++t) {
+    const long long idx = obj_vertex_index(l.tokens[t], l, name, what, defined);
+    face.push_back(static_cast<Index>(idx));
+    pending.index.push_back(idx);
+    pending.line.push_back(l.number);
+  }
+  add_face(raw, face, l.number);
+}
+
+/// The material statements of a line (mtllib, usemtl), when the caller asks for them.
+void read_obj_material_statement(const Line& l, const std::string& name, ObjMaterialUse& materials,
+                                 std::string& usemtl, long& usemtl_line) {
+  const std::string_view key = l.tokens[0];
+  if (key == "mtllib") {
+    if (l.tokens.size() < 2) fail(name, l.number, "mtllib without a file name");
+    for (std::size_t t = 1; t < l.tokens.size(); ++t) materials.libraries.push_back({std::string(l.tokens[t]), l.number});
+  } else if (key == "usemtl") {
+    if (l.tokens.size() < 2) fail(name, l.number, "usemtl without a material name");
+    usemtl = join_from(l.tokens, 1);
+    usemtl_line = l.number;
+  }
+}
+
+/// After the last line: some geometry, and every vertex reference within [1, vertex count].
+void check_obj_complete(const RawMesh& raw, const ObjPendingIndices& pending, const std::string& name) {
+  if (raw.vertices.empty()) fail(name, 0, "empty mesh: no vertices ('v' lines)");
+  if (raw.face_lines.empty()) fail(name, 0, "empty mesh: no faces ('f' lines)");
+  const auto nv = static_cast<long long>(raw.vertices.size());
+  for (std::size_t i = 0; i < pending.index.size(); ++i)
+    if (pending.index[i] >= nv)
+      fail(name, pending.line[i], "vertex index " + std::to_string(pending.index[i] + 1) + " out of range [1, " +
+                                      std::to_string(nv) + "]");
+}
+
 TriangleMesh parse_obj(const std::string& text, const std::string& name, std::vector<std::string>* notes,
                        ObjMaterialUse* materials = nullptr) {
   if (text.empty()) fail(name, 0, "empty file");
@@ -410,91 +503,29 @@ TriangleMesh parse_obj(const std::string& text, const std::string& name, std::ve
   if (!cursor.next(l)) fail(name, 0, "empty file (no data, only blank lines or comments)");
 
   RawMesh raw;
-  std::vector<long long> pending;  // 1-based or resolved indices, checked against the final count
-  std::vector<long> pending_lines;
+  ObjPendingIndices pending;
   std::vector<Index> face;
   std::string usemtl;  // the material in force (materials only)
   long usemtl_line = 0;
   do {
     const std::string_view key = l.tokens[0];
-    if (materials && key == "mtllib") {
-      if (l.tokens.size() < 2) fail(name, l.number, "mtllib without a file name");
-      for (std::size_t t = 1; t < l.tokens.size(); ++t) materials->libraries.push_back({std::string(l.tokens[t]), l.number});
-    } else if (materials && key == "usemtl") {
-      if (l.tokens.size() < 2) fail(name, l.number, "usemtl without a material name");
-      usemtl = join_from(l.tokens, 1);
-      usemtl_line = l.number;
-    }
+    if (materials) read_obj_material_statement(l, name, *materials, usemtl, usemtl_line);
     if (key == "v") {
-      const std::string what = "vertex " + std::to_string(raw.vertices.size() + 1);
-      const std::size_t n = l.tokens.size() - 1;
-      if (n < 3 || n > 7)
-        fail(name, l.number, what + " has " + std::to_string(n) + " values (expected x y z [w | r g b])");
-      Vec3 p;
-      for (int c = 0; c < 3; ++c) p[c] = coordinate(l.tokens[static_cast<std::size_t>(c) + 1], name, l.number, what.c_str());
-      for (std::size_t t = 4; t < l.tokens.size(); ++t) any_number(l.tokens[t], name, l.number, what.c_str());
-      raw.vertices.push_back(p);
+      read_obj_vertex(l, name, raw);
     } else if (key == "f") {
-      const std::string what = "face " + std::to_string(raw.face_lines.size() + 1);
-      const std::size_t n = l.tokens.size() - 1;
-      if (n < 3) fail(name, l.number, what + " has " + std::to_string(n) + " vertices; a face needs at least 3");
-      face.clear();
-      for (std::size_t t = 1; t <= n; ++t) {
-        const std::string_view ref = l.tokens[t];
-        // v, v/vt, v//vn, v/vt/vn: the vertex index, then optional integer texture/normal indices.
-        std::array<std::string_view, 3> parts{};
-        std::size_t np = 0;
-        std::size_t start = 0;
-        while (true) {
-          const std::size_t slash = ref.find('/', start);
-          if (np == 3) fail(name, l.number, what + ": bad vertex reference " + show(ref));
-          parts[np++] = ref.substr(start, slash == std::string_view::npos ? std::string_view::npos : slash - start);
-          if (slash == std::string_view::npos) break;
-          start = slash + 1;
-        }
-        long long idx = 0;
-        if (!parse_integer(parts[0], idx) || idx == 0)
-          fail(name, l.number, what + ": bad vertex reference " + show(ref) +
-                                   " (expected v, v/vt, v//vn or v/vt/vn with a non-zero integer v)");
-        for (std::size_t p = 1; p < np; ++p) {
-          long long other = 0;
-          if (!parts[p].empty() && !parse_integer(parts[p], other))
-            fail(name, l.number, what + ": bad vertex reference " + show(ref));
-        }
-        const auto defined = static_cast<long long>(raw.vertices.size());
-        if (idx < 0) {
-          if (-idx > defined)
-            fail(name, l.number, what + ": relative vertex index " + std::to_string(idx) + " but only " +
-                                     std::to_string(defined) + " vertices are defined before this line");
-          idx = defined + idx;  // -1 is the last vertex defined so far
-        } else {
-          --idx;
-          if (idx > kMaxCount) fail(name, l.number, what + ": vertex index " + show(parts[0]) + " out of range");
-        }
-        face.push_back(static_cast<Index>(idx));
-        pending.push_back(idx);
-        pending_lines.push_back(l.number);
-      }
-      add_face(raw, face, l.number);
+      read_obj_face(l, name, raw, pending, face);
       if (materials) {
         materials->face_material.push_back(usemtl);
         materials->face_line.push_back(l.number);
         materials->usemtl_line.push_back(usemtl_line);
       }
-    } else if (key == "vt" || key == "vn" || key == "vp" || key == "l" || key == "p" || key == "o" ||
-               key == "g" || key == "s" || key == "usemtl" || key == "mtllib") {
-      continue;  // texture coordinates, normals, lines, points, grouping and materials: not geometry here
-    } else {
+    } else if (!(key == "vt" || key == "vn" || key == "vp" || key == "l" || key == "p" || key == "o" || key == "g" ||
+                 key == "s" || key == "usemtl" || key == "mtllib")) {
+      // vt, vn, vp, l, p, o, g, s and the material statements: not geometry here
       fail(name, l.number, unknown_obj_statement(key));
     }
   } while (cursor.next(l));
-  if (raw.vertices.empty()) fail(name, 0, "empty mesh: no vertices ('v' lines)");
-  if (raw.face_lines.empty()) fail(name, 0, "empty mesh: no faces ('f' lines)");
-  const auto nv = static_cast<long long>(raw.vertices.size());
-  for (std::size_t i = 0; i < pending.size(); ++i)
-    if (pending[i] >= nv)
-      fail(name, pending_lines[i], "vertex index " + std::to_string(pending[i] + 1) + " out of range [1, " +
-                                       std::to_string(nv) + "]");
+  check_obj_complete(raw, pending, name);
   return build_mesh(raw, name, notes);
 }
 
