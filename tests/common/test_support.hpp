@@ -1,13 +1,15 @@
 #pragma once
-// Helpers shared by the test files: a fresh temporary directory per test, and whether this build
+// Helpers shared by the test files: a fresh temporary directory per test, whether this build
 // runs under AddressSanitizer (which reserves terabytes of address space, so tests that lower
-// RLIMIT_AS cannot run there).
+// RLIMIT_AS cannot run there), and the message of a refused argument.
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <stdexcept>
 #include <fstream>
 #include <string>
 #include <system_error>
+#include <vector>
 #include <unistd.h>
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -19,6 +21,23 @@
 #endif
 
 namespace panelrad::testing {
+
+/// The message of the std::invalid_argument `f` throws ("" when it does not throw).
+template <class F>
+std::string refusal(F&& f) {
+  try {
+    f();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+/// A refusal's message names every one of `parts` (the data and the rule).
+inline void expect_names(const std::string& msg, const std::vector<std::string>& parts) {
+  ASSERT_FALSE(msg.empty()) << "not refused";
+  for (const std::string& p : parts) EXPECT_NE(msg.find(p), std::string::npos) << "'" << p << "' not in: " << msg;
+}
 
 /// A fixture with a fresh directory per test (temp/PREFIX_PID_TESTNAME), removed afterwards.
 class TempDirTest : public ::testing::Test {

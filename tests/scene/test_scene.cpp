@@ -5,6 +5,8 @@
 #include <panelrad/geometry/validation.hpp>
 #include <panelrad/scene/scene.hpp>
 
+#include "test_support.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -22,20 +24,8 @@ geometry::TriangleMesh valid_cube() {
   return mesh;
 }
 
-template <class F>
-std::string refusal(F&& f) {
-  try {
-    f();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "";
-}
-
-void expect_names(const std::string& msg, const std::vector<std::string>& parts) {
-  ASSERT_FALSE(msg.empty()) << "not refused";
-  for (const std::string& p : parts) EXPECT_NE(msg.find(p), std::string::npos) << "'" << p << "' not in: " << msg;
-}
+using testing::expect_names;
+using testing::refusal;
 
 // A point of facet f's first triangle (its centroid).
 Vec3 point_on_facet(const Scene& scene, Index f) {

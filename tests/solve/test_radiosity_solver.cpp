@@ -12,6 +12,8 @@
 #include <panelrad/solve/scene_solver.hpp>
 #include <panelrad/support/error.hpp>
 
+#include "test_support.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -294,21 +296,8 @@ TEST(RadiositySolver, OptionsCompareByValue) {
 
 namespace {
 
-// The message of the std::invalid_argument `f` throws ("" when it does not throw).
-template <class F>
-std::string refusal(F&& f) {
-  try {
-    f();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "";
-}
-
-void expect_names(const std::string& msg, const std::vector<std::string>& parts) {
-  ASSERT_FALSE(msg.empty()) << "not refused";
-  for (const std::string& p : parts) EXPECT_NE(msg.find(p), std::string::npos) << "'" << p << "' not in: " << msg;
-}
+using testing::expect_names;
+using testing::refusal;
 
 }  // namespace
 
