@@ -7,6 +7,8 @@
 #include <panelrad/scene/scene.hpp>
 #include <panelrad/solve/solvers.hpp>
 
+#include "validated_meshes.hpp"
+
 #include <gtest/gtest.h>
 
 #include <limits>
@@ -15,12 +17,7 @@ namespace {
 
 using namespace panelrad;
 
-Scene validated_scene(const std::string& builtin) {
-  geometry::TriangleMesh mesh = geometry::make_builtin(builtin);
-  const auto report = geometry::validate_closed_convex(mesh);
-  EXPECT_TRUE(report.valid) << report.message;
-  return Scene(std::move(mesh));
-}
+Scene validated_scene(const std::string& builtin) { return Scene(panelrad::testing::validated_builtin(builtin)); }
 
 // Row sums with the exact rule are rho(P_i) up to rounding (sum of O(n) terms of size <= 1).
 TEST(DenseCube, RowSumsEqualReflectivityWithTheExactRule) {

@@ -8,6 +8,8 @@
 #include <panelrad/operator/fast_operator.hpp>
 #include <panelrad/scene/scene.hpp>
 
+#include "validated_meshes.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -21,12 +23,7 @@ namespace {
 
 using namespace panelrad;
 
-Scene validated_scene(const std::string& builtin) {
-  geometry::TriangleMesh mesh = geometry::make_builtin(builtin);
-  const auto report = geometry::validate_closed_convex(mesh);
-  EXPECT_TRUE(report.valid) << report.message;
-  return Scene(std::move(mesh));
-}
+Scene validated_scene(const std::string& builtin) { return Scene(panelrad::testing::validated_builtin(builtin)); }
 
 // Two vectors unlike each other: uniform in [0, 1) and a sign-changing oscillation.
 std::vector<Eigen::VectorXd> test_vectors(Index n) {

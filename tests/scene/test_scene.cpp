@@ -7,6 +7,8 @@
 
 #include "test_support.hpp"
 
+#include "validated_meshes.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -18,11 +20,7 @@
 namespace panelrad {
 namespace {
 
-geometry::TriangleMesh valid_cube() {
-  geometry::TriangleMesh mesh = geometry::make_cube();
-  EXPECT_TRUE(geometry::validate_closed_convex(mesh).valid);
-  return mesh;
-}
+geometry::TriangleMesh valid_cube() { return testing::validated_builtin("cube"); }
 
 using testing::expect_names;
 using testing::refusal;

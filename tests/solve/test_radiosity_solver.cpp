@@ -14,6 +14,8 @@
 
 #include "test_support.hpp"
 
+#include "validated_meshes.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -25,11 +27,7 @@
 namespace panelrad {
 namespace {
 
-geometry::TriangleMesh valid_cube() {
-  geometry::TriangleMesh mesh = geometry::make_cube();
-  EXPECT_TRUE(geometry::validate_closed_convex(mesh).valid);
-  return mesh;
-}
+geometry::TriangleMesh valid_cube() { return testing::validated_builtin("cube"); }
 
 // rho and E per facet of one channel, different per facet (the cube has 6 facets).
 struct FacetData {
