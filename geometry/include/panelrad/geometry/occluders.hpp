@@ -1,0 +1,103 @@
+#pragma once
+// The line-of-sight function V(P, Q) of the radiosity equation (1) on a general scene: which
+// part of a triangle tau a point P sees past the scene's faces. Every face occludes, from both of
+// its sides. Built on CGAL's AABB tree (candidate faces of a shaft, segment queries); CGAL stays
+// in geometry/src, this header exposes plain types.
+//
+// Conventions. P lies on a face whose front normal (the paper's inner normal n, the side that
+// emits, reflects and sees) is nP; tau = (a, b, c) has front normal nQ. The kernel G V of (1) is
+// clamped: a point sees nothing behind its own plane (cos theta_P > 0) and a face only from its
+// front (cos theta_Q > 0).
+//
+// The shaft from P to tau is the tetrahedron conv(P, tau). An occluder meets it when the part of
+// the face strictly inside (strictly in front of tau's plane, by the margin below) casts a shadow
+// of positive area on tau, seen from P. Faces through P (seen edge-on) and faces in tau's plane
+// (tau's own face, its coplanar neighbours) cast none: touching is not occluding.
+//
+// Rounding policy. The decisions are made in double precision with the margin
+// kShadowMargin * diameter on distances to planes and kShadowMargin * area(tau) on shadow areas:
+// a face that enters the shaft by less than the margin is ignored, and a visible area below the
+// margin is empty. The error this makes in a form factor is of the order of the margin (a sliver
+// of relative width 1e-12 seen from P), far below the discretization error; exact predicates are
+// not needed for a bounded quantity of that size.
+#include <panelrad/geometry/mesh.hpp>
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+namespace panelrad::geometry {
+
+/// Relative margin of the shadow tests (see the rounding policy above).
+inline constexpr double kShadowMargin = 1e-12;
+
+/// How much of tau a point P sees.
+enum class ShaftClass : std::uint8_t {
+  full,     ///< tau lies strictly in front of P's plane, P strictly in front of tau, nothing meets the shaft
+  hidden,   ///< nothing of tau is seen: P on or behind tau's plane, tau on or behind P's plane, or covered by shadows
+  partial,  ///< some, not all: the visible part is a set of convex polygons (visible_part)
+};
+
+/// The visible part of a triangle: convex polygons in the triangle's plane, as 3-D points.
+struct VisiblePart {
+  std::vector<Vec3> points;              ///< the pieces' corners, piece after piece, counter-clockwise about nQ
+  std::vector<std::uint32_t> piece_end;  ///< piece k is points[piece_end[k-1], piece_end[k]) (piece_end[-1] = 0)
+  double area = 0;                       ///< total area of the pieces
+  std::size_t num_pieces() const { return piece_end.size(); }
+  void clear() {
+    points.clear();
+    piece_end.clear();
+    area = 0;
+  }
+};
+
+/// The scene's faces as occluders, with the queries of the fast product and of the dense reference.
+/// Thread-safe: every query is const and uses no shared mutable state.
+class Occluders {
+ public:
+  /// Every triangle of `mesh` is an occluder (index = triangle index). The mesh must have finite
+  /// coordinates and no zero-area triangle (validate_scene).
+  explicit Occluders(const TriangleMesh& mesh);
+  ~Occluders();
+  Occluders(Occluders&&) noexcept;
+  Occluders& operator=(Occluders&&) noexcept;
+
+  Index size() const;
+  const std::array<Vec3, 3>& triangle(Index t) const;
+  /// Bounding-box diagonal of the scene (the length scale of the margin).
+  double diameter() const;
+
+  /// The occluders whose bounding box meets the bounding box of the shaft conv(P, tau), and that
+  /// have a point strictly in front of P's plane and strictly in front of tau's plane: a superset of
+  /// those that meet the shaft. `out` is replaced, ascending (deterministic). By the AABB tree.
+  void candidates(const Vec3& P, const Vec3& nP, const std::array<Vec3, 3>& tau, const Vec3& nQ,
+                  std::vector<Index>& out) const;
+
+  /// Classifies tau as seen from P against the occluders `among` (candidates of tau or of a
+  /// triangle containing tau: the shaft of a sub-triangle lies in its parent's). `meeting` is
+  /// replaced by those among them that meet the shaft (ascending): the candidates for tau's
+  /// sub-triangles. When `part` is given and the class is partial, it receives the visible part
+  /// (as visible_part); otherwise it is left cleared.
+  ShaftClass classify(const Vec3& P, const Vec3& nP, const std::array<Vec3, 3>& tau, const Vec3& nQ,
+                      std::span<const Index> among, std::vector<Index>& meeting, VisiblePart* part = nullptr) const;
+
+  /// The part of tau that P sees: tau clipped to the front of P's plane, minus the shadows cast
+  /// from P by the occluders `among` (central projection from P onto tau's plane of each face
+  /// clipped to the shaft), as convex pieces. Empty when P is on or behind tau's plane.
+  void visible_part(const Vec3& P, const Vec3& nP, const std::array<Vec3, 3>& tau, const Vec3& nQ,
+                    std::span<const Index> among, VisiblePart& out) const;
+
+  /// V(P, Q) by one ray (a segment query of the AABB tree): false when some face other than those
+  /// containing P or Q (within the margin) is crossed by the open segment PQ in its interior.
+  /// For reference integrals by quadrature; the operators use classify / visible_part.
+  bool visible(const Vec3& P, const Vec3& Q) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace panelrad::geometry
