@@ -9,6 +9,10 @@
 //   convex_within_rounding.cpp  violations within the rounding of the input, or the refusal
 //   input_rounding.cpp          the rounding model and its bound(t, v)
 //   validation_messages.cpp     how a vertex, a triangle and a length are named in messages
+// and the rules of validate_scene (scene_validation.hpp), which scene_validation.cpp applies after
+// the convex path:
+//   face_crossing.cpp           no two faces cross (interiors meet)
+//   piece_orientation.cpp       connected pieces, orientable, front sides (enclosure, object, open)
 // Every geometric decision is a CGAL exact predicate (Epick: filtered double arithmetic with an
 // exact fallback), never a tolerance. Private to geometry/src: CGAL stays out of the installed
 // headers.
@@ -78,7 +82,8 @@ struct Adjacency {
   std::vector<Index> neighbour;  // 3 * num_triangles
 };
 
-/// Closedness (every edge in exactly two triangles) and edge-manifoldness; fills the adjacency.
+/// Closedness (every edge in exactly two triangles) and edge-manifoldness; fills the adjacency,
+/// also when it fails: kNone across a boundary edge or an edge in three or more triangles.
 std::optional<Failure> build_adjacency(const TriangleMesh& mesh, Adjacency& adj);
 /// Closed 2-manifold: closed, every vertex used with a single fan around it, no two vertices at
 /// the same point; fills the adjacency.
@@ -149,5 +154,25 @@ std::optional<std::string> retriangulate_convex_from_hull(TriangleMesh& mesh, co
 std::optional<Failure> accept_within_rounding(const TriangleMesh& mesh, const std::vector<Index>& bad,
                                               const Geometry& g, const Vec3& inside, double diam,
                                               const std::string& hull_reason, ValidationReport& report);
+
+// --- general scenes (face_crossing.cpp, piece_orientation.cpp) ----------------------------------
+
+/// Rule "crossing" of validate_scene: no two triangles have a point interior to both (a transversal
+/// cut, or a coplanar overlap of positive area); touching along edges or at points is allowed.
+std::optional<Failure> check_no_crossing(const TriangleMesh& mesh, const std::vector<Point>& pts);
+
+/// What orient_scene_pieces decided.
+struct ScenePieces {
+  Sz pieces = 0;
+  Sz closed_pieces = 0;
+  Sz flipped = 0;                  // triangles flipped to agree with most of their piece's area
+  std::vector<std::string> notes;  // one per piece, or a summary of many
+};
+
+/// Rule "orientable" of validate_scene, and the front sides: re-orients mesh.triangles so that
+/// each is clockwise seen from its front (geometric normal to the back). Needs a scene without
+/// crossings (check_no_crossing): nesting of closed pieces is decided by ray parity. On failure
+/// mesh.triangles may be partly re-oriented.
+std::optional<Failure> orient_scene_pieces(TriangleMesh& mesh, ScenePieces& out);
 
 }  // namespace panelrad::geometry::validation_detail

@@ -32,7 +32,10 @@ struct SceneValidationReport {
                                    ///< general scene is not convex)
   std::size_t pieces = 0;          ///< connected pieces (triangles joined across edges they share)
   std::size_t closed_pieces = 0;   ///< of which closed (every edge in two of its triangles)
-  std::size_t flipped_faces = 0;   ///< triangles re-oriented relative to the input
+  std::size_t flipped_faces = 0;   ///< triangles re-oriented relative to the input: on the convex
+                                   ///< path validate_closed_convex's count; on the general path the
+                                   ///< triangles flipped to agree with most of their piece's area
+                                   ///< (the storage convention below is not counted)
 };
 
 /// Validates `mesh` as a scene and orients it.

@@ -1,0 +1,467 @@
+// validate_scene on scenes built in code: the convex path kept bit for bit, closed rooms with
+// objects (front inward and outward, checked against the known inside of each box), open surfaces
+// (front on their counter-clockwise side), touching faces accepted, crossing faces and one-sided
+// pieces refused with the faces and a point named, faces flipped to the majority of their piece.
+#include <panelrad/geometry/builtin_scenes.hpp>
+#include <panelrad/geometry/scene_validation.hpp>
+#include <panelrad/geometry/validation.hpp>
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <vector>
+
+namespace pg = panelrad::geometry;
+
+namespace {
+
+const std::string kScenes = std::string(PANELRAD_SOURCE_DIR) + "/examples/scenes/";
+
+#define EXPECT_CONTAINS(haystack, needle) \
+  EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << "message: " << (haystack)
+
+/// A scene assembled from polygons, each one input face (facet), fan-triangulated.
+struct SceneBuilder {
+  pg::TriangleMesh mesh;
+  SceneBuilder() { mesh.source = "test"; }
+
+  pg::Index vertex(const pg::Vec3& p) {
+    mesh.vertices.push_back(p);
+    return static_cast<pg::Index>(mesh.vertices.size() - 1);
+  }
+  /// A polygon over existing vertices, listed counter-clockwise as given.
+  pg::Index polygon(const std::vector<pg::Index>& v) {
+    for (std::size_t k = 1; k + 1 < v.size(); ++k) {
+      mesh.triangles.push_back({v[0], v[k], v[k + 1]});
+      mesh.facet_of_triangle.push_back(mesh.num_facets);
+    }
+    return mesh.num_facets++;
+  }
+  /// A planar polygon over existing vertices, ordered so that it runs counter-clockwise seen from
+  /// the side `front` points to (reversed keeping the first vertex, the apex of the fan).
+  pg::Index facing(std::vector<pg::Index> v, const pg::Vec3& front) {
+    const pg::Vec3& a = mesh.vertices[v[0]];
+    if ((mesh.vertices[v[1]] - a).cross(mesh.vertices[v[2]] - a).dot(front) < 0) std::reverse(v.begin() + 1, v.end());
+    return polygon(v);
+  }
+  /// A rectangle with new vertices: corner, two edge vectors; counter-clockwise seen from `front`.
+  pg::Index quad(const pg::Vec3& o, const pg::Vec3& u, const pg::Vec3& w, const pg::Vec3& front) {
+    return facing({vertex(o), vertex(o + u), vertex(o + u + w), vertex(o + w)}, front);
+  }
+  /// The axis box [lo, hi] as six quads (12 triangles) over 8 shared vertices, counter-clockwise
+  /// seen from outside (outward = true) or from inside; `skip` leaves out faces, named by their
+  /// outward normal ("-x", "+x", "-y", "+y", "-z", "+z"). Returns the facet id of each face kept,
+  /// in that order (-1 for the skipped ones).
+  std::vector<pg::Index> box(const pg::Vec3& lo, const pg::Vec3& hi, bool outward = true,
+                             const std::vector<std::string>& skip = {}) {
+    pg::Index c[2][2][2];
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2; ++j)
+        for (int k = 0; k < 2; ++k)
+          c[i][j][k] = vertex({i ? hi.x() : lo.x(), j ? hi.y() : lo.y(), k ? hi.z() : lo.z()});
+    const double s = outward ? 1.0 : -1.0;
+    struct Face {
+      std::string name;
+      std::vector<pg::Index> v;
+      pg::Vec3 normal;
+    };
+    const std::vector<Face> faces = {
+        {"-x", {c[0][0][0], c[0][1][0], c[0][1][1], c[0][0][1]}, {-1, 0, 0}},
+        {"+x", {c[1][0][0], c[1][1][0], c[1][1][1], c[1][0][1]}, {1, 0, 0}},
+        {"-y", {c[0][0][0], c[1][0][0], c[1][0][1], c[0][0][1]}, {0, -1, 0}},
+        {"+y", {c[0][1][0], c[1][1][0], c[1][1][1], c[0][1][1]}, {0, 1, 0}},
+        {"-z", {c[0][0][0], c[1][0][0], c[1][1][0], c[0][1][0]}, {0, 0, -1}},
+        {"+z", {c[0][0][1], c[1][0][1], c[1][1][1], c[0][1][1]}, {0, 0, 1}},
+    };
+    std::vector<pg::Index> ids;
+    for (const Face& f : faces) {
+      if (std::find(skip.begin(), skip.end(), f.name) != skip.end()) {
+        ids.push_back(-1);
+        continue;
+      }
+      ids.push_back(facing(f.v, s * f.normal));
+    }
+    return ids;
+  }
+  /// An n x n grid of quads on [0, size]^2 at z = 0 with shared vertices, counter-clockwise from +z.
+  void grid(int n, double size) {
+    std::vector<pg::Index> v;
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) v.push_back(vertex({size * i / n, size * j / n, 0.0}));
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const auto at = [&](int a, int b) { return v[static_cast<std::size_t>(b * (n + 1) + a)]; };
+        polygon({at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+      }
+  }
+};
+
+pg::Vec3 centroid(const pg::TriangleMesh& m, std::size_t t) {
+  const auto& tr = m.triangles[t];
+  return (m.vertices[tr[0]] + m.vertices[tr[1]] + m.vertices[tr[2]]) / 3.0;
+}
+/// The stored geometric normal (b - a) x (c - a), unit; by the storage convention it points to
+/// the back, the front (inner normal n) is its negative.
+pg::Vec3 geometric_normal(const pg::TriangleMesh& m, std::size_t t) {
+  const auto& tr = m.triangles[t];
+  const pg::Vec3& a = m.vertices[tr[0]];
+  return (m.vertices[tr[1]] - a).cross(m.vertices[tr[2]] - a).normalized();
+}
+pg::Vec3 front_normal(const pg::TriangleMesh& m, std::size_t t) { return -geometric_normal(m, t); }
+
+bool in_box(const pg::Vec3& p, const pg::Vec3& lo, const pg::Vec3& hi) {
+  return (p.array() > lo.array()).all() && (p.array() < hi.array()).all();
+}
+
+/// For each triangle in [first, last): a point a little in front of its centroid lies in the
+/// region `inside` says, a point a little behind it does not (0.01 is far below every box size
+/// used here and far above rounding, so the step never reaches another face).
+void expect_front_into(const pg::TriangleMesh& m, std::size_t first, std::size_t last,
+                       const std::function<bool(const pg::Vec3&)>& inside, const std::string& what) {
+  for (std::size_t t = first; t < last; ++t) {
+    const pg::Vec3 c = centroid(m, t), n = front_normal(m, t);
+    EXPECT_TRUE(inside(c + 0.01 * n)) << what << ": triangle " << t << " faces away";
+    EXPECT_FALSE(inside(c - 0.01 * n)) << what << ": triangle " << t << " faces backwards";
+  }
+}
+
+/// The point named after " at (" in a crossing message.
+pg::Vec3 crossing_point(const std::string& msg) {
+  const std::size_t k = msg.find(" at (");
+  EXPECT_NE(k, std::string::npos) << msg;
+  if (k == std::string::npos) return pg::Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+  pg::Vec3 p;
+  std::size_t pos = k + 5;
+  for (int i = 0; i < 3; ++i) {
+    std::size_t used = 0;
+    p[i] = std::stod(msg.substr(pos), &used);
+    pos += used + 2;  // ", "
+  }
+  return p;
+}
+
+TEST(SceneValidation, BuiltinSolidsStayConvexAndIdenticalToTheConvexPath) {
+  for (const std::string name : {"cube", "prism:7", "octahedron"}) {
+    pg::TriangleMesh scene = pg::make_builtin(name), convex = scene;
+    const pg::ValidationReport cr = pg::validate_closed_convex(convex);
+    const pg::SceneValidationReport r = pg::validate_scene(scene);
+    ASSERT_TRUE(r.valid) << name << ": " << r.message;
+    EXPECT_EQ(r.shape, pg::SceneShape::convex);
+    EXPECT_STREQ(pg::to_string(r.shape), "convex");
+    EXPECT_EQ(r.pieces, 1u);
+    EXPECT_EQ(r.closed_pieces, 1u);
+    EXPECT_EQ(scene.vertices, convex.vertices) << name;  // Eigen ==: every coordinate bit for bit
+    EXPECT_EQ(scene.triangles, convex.triangles) << name;
+    EXPECT_EQ(scene.facet_of_triangle, convex.facet_of_triangle) << name;
+    EXPECT_EQ(r.notes, cr.notes);
+  }
+  // Given inward: the convex path flips every triangle; the scene takes exactly that.
+  pg::TriangleMesh scene = pg::make_cube();
+  for (auto& t : scene.triangles) std::swap(t[1], t[2]);
+  pg::TriangleMesh convex = scene;
+  pg::validate_closed_convex(convex);
+  const pg::SceneValidationReport r = pg::validate_scene(scene);
+  ASSERT_TRUE(r.valid);
+  EXPECT_EQ(r.flipped_faces, 12u);
+  EXPECT_EQ(scene.triangles, convex.triangles);
+}
+
+TEST(SceneValidation, ClosedRoomWithABoxInside) {
+  SceneBuilder b;
+  const pg::Vec3 rlo(0, 0, 0), rhi(4, 3, 2.5), blo(1, 1, 0.5), bhi(2, 1.5, 1.5);
+  b.box(rlo, rhi, /*outward=*/true);   // the usual export: counter-clockwise from outside
+  b.box(blo, bhi, /*outward=*/false);  // deliberately the other way
+  pg::SceneValidationReport r = pg::validate_scene(b.mesh);
+  ASSERT_TRUE(r.valid) << r.message;
+  EXPECT_EQ(r.shape, pg::SceneShape::general);
+  EXPECT_STREQ(pg::to_string(r.shape), "general");
+  EXPECT_EQ(r.convex_report.rule, "connected");
+  EXPECT_EQ(r.pieces, 2u);
+  EXPECT_EQ(r.closed_pieces, 2u);
+  EXPECT_EQ(r.flipped_faces, 0u);
+  ASSERT_EQ(r.notes.size(), 3u);
+  EXPECT_CONTAINS(r.notes[0], "not one closed convex surface (connected: the surface has 2 separate pieces");
+  EXPECT_CONTAINS(r.notes[0], "the visibility V(P, Q) is computed");
+  EXPECT_CONTAINS(r.notes[1], "piece 0 (12 triangles, closed): an enclosure");
+  EXPECT_CONTAINS(r.notes[1], "front side inward");
+  EXPECT_CONTAINS(r.notes[2], "piece 1 (12 triangles, closed): an object inside piece 0, front side outward");
+  // The room's fronts point into its volume; the box's away from it, into the room's air.
+  expect_front_into(b.mesh, 0, 12, [&](const pg::Vec3& p) { return in_box(p, rlo, rhi); }, "room");
+  expect_front_into(b.mesh, 12, 24, [&](const pg::Vec3& p) { return !in_box(p, blo, bhi); }, "box");
+  // Nested: a box inside the box is an object inside piece 1.
+  b.box({1.2, 1.1, 0.7}, {1.4, 1.3, 0.9});
+  r = pg::validate_scene(b.mesh);
+  ASSERT_TRUE(r.valid) << r.message;
+  ASSERT_EQ(r.notes.size(), 4u);
+  EXPECT_CONTAINS(r.notes[3], "piece 2 (12 triangles, closed): an object inside piece 1, front side outward");
+}
+
+TEST(SceneValidation, LShapedRoomIsOneClosedNonConvexPiece) {
+  // The L = [0,2]x[0,1] u [0,1]x[0,2] extruded over z in [0,1]; caps fanned from the reflex corner.
+  SceneBuilder b;
+  const std::vector<pg::Vec3> l = {{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}};
+  std::vector<pg::Index> bottom, top;
+  for (const auto& p : l) bottom.push_back(b.vertex(p));
+  for (const auto& p : l) top.push_back(b.vertex(p + pg::Vec3(0, 0, 1)));
+  // Caps as polygons starting at the reflex corner (index 3), so that the fan lies inside the L.
+  const auto rot = [](std::vector<pg::Index> v) {
+    std::rotate(v.begin(), v.begin() + 3, v.end());
+    return v;
+  };
+  b.facing(rot(bottom), {0, 0, 1});  // counter-clockwise from inside the room (the file's front)
+  b.facing(rot(top), {0, 0, -1});
+  for (std::size_t i = 0; i < l.size(); ++i) {
+    const std::size_t j = (i + 1) % l.size();
+    const pg::Vec3 edge = l[j] - l[i];
+    b.facing({bottom[i], bottom[j], top[j], top[i]}, pg::Vec3(-edge.y(), edge.x(), 0));  // inward: L is CCW
+  }
+  const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
+  ASSERT_TRUE(r.valid) << r.message;
+  EXPECT_EQ(r.shape, pg::SceneShape::general);
+  EXPECT_EQ(r.convex_report.rule, "convex");
+  EXPECT_EQ(r.pieces, 1u);
+  EXPECT_EQ(r.closed_pieces, 1u);
+  ASSERT_EQ(b.mesh.triangles.size(), 20u);
+  const auto in_l = [](const pg::Vec3& p) {
+    return p.z() > 0 && p.z() < 1 && p.x() > 0 && p.y() > 0 && ((p.x() < 2 && p.y() < 1) || (p.x() < 1 && p.y() < 2));
+  };
+  expect_front_into(b.mesh, 0, 20, in_l, "L room");
+}
+
+TEST(SceneValidation, TwoSeparateBoxesAreEnclosures) {
+  SceneBuilder b;
+  const pg::Vec3 alo(0, 0, 0), ahi(1, 1, 1), blo(2, 0, 0), bhi(3, 1, 1);
+  b.box(alo, ahi);
+  b.box(blo, bhi, false);
+  const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
+  ASSERT_TRUE(r.valid) << r.message;
+  EXPECT_EQ(r.pieces, 2u);
+  EXPECT_EQ(r.closed_pieces, 2u);
+  ASSERT_EQ(r.notes.size(), 3u);
+  EXPECT_CONTAINS(r.notes[1], "an enclosure inside no other closed piece");
+  EXPECT_CONTAINS(r.notes[2], "an enclosure inside no other closed piece");
+  expect_front_into(b.mesh, 0, 12, [&](const pg::Vec3& p) { return in_box(p, alo, ahi); }, "first box");
+  expect_front_into(b.mesh, 12, 24, [&](const pg::Vec3& p) { return in_box(p, blo, bhi); }, "second box");
+}
+
+TEST(SceneValidation, OpenRoomKeepsTheCounterClockwiseSideAsFront) {
+  // The unit room without its front wall (y = 0), counter-clockwise seen from inside.
+  SceneBuilder b;
+  b.box({0, 0, 0}, {1, 1, 1}, /*outward=*/false, {"-y"});
+  const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
+  ASSERT_TRUE(r.valid) << r.message;
+  EXPECT_EQ(r.convex_report.rule, "closed");
+  EXPECT_EQ(r.pieces, 1u);
+  EXPECT_EQ(r.closed_pieces, 0u);
+  EXPECT_EQ(r.flipped_faces, 0u);
+  ASSERT_EQ(r.notes.size(), 2u);
+  EXPECT_CONTAINS(r.notes[1], "piece 0 (10 triangles, open): an open surface, front side where its faces run counter-clockwise");
+  const pg::Vec3 centre(0.5, 0.5, 0.5);
+  for (std::size_t t = 0; t < b.mesh.triangles.size(); ++t)  // stored normal to the back: outward
+    EXPECT_GT(geometric_normal(b.mesh, t).dot(centroid(b.mesh, t) - centre), 0.0) << "triangle " << t;
+}
+
+TEST(SceneValidation, BlockWithoutBottomStandsOnAnUncutFloor) {
+  // The block's bottom edges lie inside the floor's two triangles and cross its diagonal
+  // (T-junctions): touching, not crossing.
+  SceneBuilder b;
+  b.quad({0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {0, 0, 1});
+  b.box({1, 1.5, 0}, {2, 2.5, 1}, true, {"-z"});
+  const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
+  ASSERT_TRUE(r.valid) << r.message;
+  EXPECT_EQ(r.shape, pg::SceneShape::general);
+  EXPECT_EQ(r.pieces, 2u);
+  EXPECT_EQ(r.closed_pieces, 0u);
+  // The floor's front is up (+z), stored with its geometric normal down; the block's front outward.
+  for (std::size_t t = 0; t < 2; ++t) EXPECT_LT(geometric_normal(b.mesh, t).z(), 0.0);
+  for (std::size_t t = 2; t < b.mesh.triangles.size(); ++t)
+    EXPECT_LT(geometric_normal(b.mesh, t).dot(centroid(b.mesh, t) - pg::Vec3(1.5, 2, 0.5)), 0.0);
+  // A block sunk into the floor by 0.25 is refused: its walls cut through it.
+  SceneBuilder sunk;
+  sunk.quad({0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {0, 0, 1});
+  sunk.box({1, 1.5, -0.25}, {2, 2.5, 1}, true, {"-z"});
+  EXPECT_EQ(pg::validate_scene(sunk.mesh).rule, "crossing");
+}
+
+TEST(SceneValidation, WallPiercingAFaceIsRefusedWithBothFacesAndAPoint) {
+  // A closed box, and a quad in the plane y = 0.5 from x = 0.5 to 1.5: it cuts the wall x = 1
+  // along x = 1, y = 0.5, z in [0.25, 0.75].
+  SceneBuilder b;
+  const std::vector<pg::Index> faces = b.box({0, 0, 0}, {1, 1, 1});
+  const pg::Index quad = b.quad({0.5, 0.5, 0.25}, {1, 0, 0}, {0, 0, 0.5}, {0, 1, 0});
+  pg::TriangleMesh input = b.mesh;
+  const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
+  ASSERT_FALSE(r.valid);
+  EXPECT_EQ(r.rule, "crossing");
+  EXPECT_CONTAINS(r.message, "crossing: input faces " + std::to_string(faces[1]) + " and " + std::to_string(quad) + " cross at (");
+  EXPECT_CONTAINS(r.message, "(input face " + std::to_string(faces[1]) + "; vertices");
+  EXPECT_CONTAINS(r.message, "(input face " + std::to_string(quad) + "; vertices");
+  EXPECT_CONTAINS(r.message, "split the faces along their intersection, or move one so that they only touch");
+  const pg::Vec3 x = crossing_point(r.message);
+  EXPECT_EQ(x.x(), 1.0);  // exact constructions, printed round-trip: the values on the segment exactly
+  EXPECT_EQ(x.y(), 0.5);
+  EXPECT_GT(x.z(), 0.25);
+  EXPECT_LT(x.z(), 0.75);
+  EXPECT_EQ(b.mesh.triangles, input.triangles);  // unchanged when refused
+}
+
+TEST(SceneValidation, CoplanarOverlapIsACrossing) {
+  SceneBuilder b;
+  b.quad({0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0, 0, 1});
+  b.quad({1, 1, 0}, {2, 0, 0}, {0, 2, 0}, {0, 0, -1});  // facing the other way: still overlapping
+  const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
+  ASSERT_FALSE(r.valid);
+  EXPECT_EQ(r.rule, "crossing");
+  EXPECT_CONTAINS(r.message, "input faces 0 and 1 cross at (");
+  const pg::Vec3 x = crossing_point(r.message);
+  EXPECT_EQ(x.z(), 0.0);
+  EXPECT_TRUE(x.x() > 1 && x.x() < 2 && x.y() > 1 && x.y() < 2) << r.message;  // inside both quads
+}
+
+TEST(SceneValidation, CoplanarQuadsSharingAnEdgeWithSeparateVerticesTouch) {
+  SceneBuilder b;
+  b.quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1});
+  b.quad({1, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1});
+  // And one touching the first at a corner only, and one whose corner lies on the first's edge.
+  b.quad({-1, -1, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1});
+  b.quad({-1, 0.5, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1});
+  const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
+  ASSERT_TRUE(r.valid) << r.message;
+  EXPECT_EQ(r.pieces, 4u);
+  // A duplicate of the first triangle over the same vertices, reversed: a coplanar overlap.
+  SceneBuilder d;
+  d.quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1});
+  d.mesh.triangles.push_back({d.mesh.triangles[0][0], d.mesh.triangles[0][2], d.mesh.triangles[0][1]});
+  d.mesh.facet_of_triangle.push_back(d.mesh.num_facets++);
+  EXPECT_EQ(pg::validate_scene(d.mesh).rule, "crossing");
+}
+
+TEST(SceneValidation, SingleQuadIsAGeneralScene) {
+  SceneBuilder b;
+  b.quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1});
+  const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
+  ASSERT_TRUE(r.valid) << r.message;
+  EXPECT_EQ(r.shape, pg::SceneShape::general);
+  EXPECT_EQ(r.convex_report.rule, "closed");
+  EXPECT_EQ(r.pieces, 1u);
+  for (std::size_t t = 0; t < 2; ++t) EXPECT_EQ(geometric_normal(b.mesh, t), pg::Vec3(0, 0, -1));  // front +z
+  // A closed flat surface (a triangle and its reverse over the same vertices) is refused by the
+  // convex path as enclosing no volume, then by the general rules as a coplanar overlap.
+  SceneBuilder two;
+  two.polygon({two.vertex({0, 0, 0}), two.vertex({1, 0, 0}), two.vertex({0, 1, 0})});
+  two.polygon({0, 2, 1});
+  const pg::SceneValidationReport f = pg::validate_scene(two.mesh);
+  EXPECT_EQ(f.convex_report.rule, "non-degenerate");
+  EXPECT_CONTAINS(f.convex_report.message, "all vertices are coplanar");
+  EXPECT_EQ(f.rule, "crossing");
+  EXPECT_CONTAINS(f.message, "input faces 0 and 1 cross at (");
+}
+
+TEST(SceneValidation, MoebiusStripIsRefusedAsNotOrientable) {
+  // Centre circle of radius 2, half-width 0.5, turning by pi once around: 16 quads; the last one
+  // joins the end to the start with the sides exchanged.
+  SceneBuilder b;
+  const int n = 16;
+  std::vector<pg::Index> in, out;
+  for (int i = 0; i < n; ++i) {
+    const double t = 2 * std::numbers::pi * i / n;
+    const pg::Vec3 c(2 * std::cos(t), 2 * std::sin(t), 0), radial(std::cos(t), std::sin(t), 0);
+    const pg::Vec3 w = 0.5 * (std::cos(t / 2) * radial + std::sin(t / 2) * pg::Vec3(0, 0, 1));
+    in.push_back(b.vertex(c - w));
+    out.push_back(b.vertex(c + w));
+  }
+  for (int i = 0; i + 1 < n; ++i) b.polygon({in[i], in[i + 1], out[i + 1], out[i]});
+  b.polygon({in[n - 1], out[0], in[0], out[n - 1]});  // at t = 2 pi, c + w is the start's c - w
+  const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
+  ASSERT_FALSE(r.valid);
+  EXPECT_EQ(r.rule, "orientable") << r.message;
+  EXPECT_CONTAINS(r.message, "orientable: the piece of the surface containing triangle 0 is one-sided");
+  EXPECT_CONTAINS(r.message, "cannot be oriented consistently with its neighbours");
+  // The same strip without the twist (an annulus) is fine.
+  SceneBuilder a;
+  std::vector<pg::Index> ai, ao;
+  for (int i = 0; i < n; ++i) {
+    const double t = 2 * std::numbers::pi * i / n;
+    ai.push_back(a.vertex({1.5 * std::cos(t), 1.5 * std::sin(t), 0}));
+    ao.push_back(a.vertex({2.5 * std::cos(t), 2.5 * std::sin(t), 0}));
+  }
+  for (int i = 0; i < n; ++i) a.polygon({ai[i], ai[(i + 1) % n], ao[(i + 1) % n], ao[i]});
+  EXPECT_TRUE(pg::validate_scene(a.mesh).valid);
+}
+
+TEST(SceneValidation, InconsistentTrianglesOfAnOpenPieceFollowTheMajority) {
+  SceneBuilder b;
+  b.grid(3, 3.0);  // 18 triangles counter-clockwise from +z
+  std::swap(b.mesh.triangles[4][1], b.mesh.triangles[4][2]);
+  std::swap(b.mesh.triangles[11][1], b.mesh.triangles[11][2]);
+  const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
+  ASSERT_TRUE(r.valid) << r.message;
+  EXPECT_EQ(r.flipped_faces, 2u);
+  ASSERT_EQ(r.notes.size(), 2u);
+  EXPECT_CONTAINS(r.notes[1], "piece 0 (18 triangles, open)");
+  EXPECT_CONTAINS(r.notes[1], "2 triangles flipped to agree with most of its area");
+  for (std::size_t t = 0; t < 18; ++t) EXPECT_LT(geometric_normal(b.mesh, t).z(), 0.0) << t;  // front +z
+}
+
+TEST(SceneValidation, ManyPiecesAreSummarized) {
+  SceneBuilder b;
+  for (int i = 0; i < 10; ++i) b.quad({2.0 * i, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1});
+  b.box({0, 3, 0}, {1, 4, 1});
+  const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
+  ASSERT_TRUE(r.valid) << r.message;
+  EXPECT_EQ(r.pieces, 11u);
+  ASSERT_EQ(r.notes.size(), 2u);
+  EXPECT_CONTAINS(r.notes[1], "11 pieces: 1 enclosures");
+  EXPECT_CONTAINS(r.notes[1], "0 objects");
+  EXPECT_CONTAINS(r.notes[1], "10 open");
+}
+
+TEST(SceneValidation, BadInputIsRefusedAsOnTheConvexPath) {
+  SceneBuilder nan;
+  nan.quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1});
+  nan.mesh.vertices[2].y() = std::numeric_limits<double>::quiet_NaN();
+  pg::SceneValidationReport r = pg::validate_scene(nan.mesh);
+  EXPECT_FALSE(r.valid);
+  EXPECT_EQ(r.rule, "finite");
+  EXPECT_CONTAINS(r.message, "vertex 2");
+  SceneBuilder flat;
+  flat.quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1});
+  const pg::Index v = flat.vertex({2, 0, 0});  // collinear with vertices 0 and 1
+  flat.polygon({0, 1, v});
+  r = pg::validate_scene(flat.mesh);
+  EXPECT_FALSE(r.valid);
+  EXPECT_EQ(r.rule, "non-degenerate");
+  EXPECT_CONTAINS(r.message, "triangle 2");
+  EXPECT_CONTAINS(r.message, "zero area");
+  pg::TriangleMesh empty;
+  EXPECT_EQ(pg::validate_scene(empty).rule, "non-empty");
+}
+
+TEST(SceneValidation, LoadSceneMesh) {
+  pg::SceneShape shape = pg::SceneShape::general;
+  std::vector<std::string> notes;
+  const pg::TriangleMesh cube = pg::load_scene_mesh("builtin:cube", shape, &notes);
+  EXPECT_EQ(shape, pg::SceneShape::convex);
+  EXPECT_EQ(cube.triangles, pg::load_closed_convex("builtin:cube").triangles);
+  // The Cornell box file is one closed convex surface: the convex path, as load_closed_convex.
+  std::vector<std::string> scene_notes, convex_notes;
+  const pg::TriangleMesh box = pg::load_scene_mesh(kScenes + "cornell_box.obj", shape, &scene_notes);
+  const pg::TriangleMesh same = pg::load_closed_convex(kScenes + "cornell_box.obj", &convex_notes);
+  EXPECT_EQ(shape, pg::SceneShape::convex);
+  EXPECT_EQ(box.vertices, same.vertices);
+  EXPECT_EQ(box.triangles, same.triangles);
+  EXPECT_EQ(scene_notes, convex_notes);
+  try {
+    pg::load_scene_mesh("builtin:nothing", shape);
+    ADD_FAILURE() << "unknown built-in accepted";
+  } catch (const pg::MeshError&) {
+  }
+}
+
+}  // namespace
