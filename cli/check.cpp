@@ -4,7 +4,7 @@
 
 #include <panelrad/geometry/builtin_scenes.hpp>
 #include <panelrad/geometry/mesh_io.hpp>
-#include <panelrad/geometry/validation.hpp>
+#include <panelrad/geometry/scene_validation.hpp>
 
 #include <iostream>
 #include <memory>
@@ -18,8 +18,10 @@ namespace {
 const char* kCheckUsage =
     "usage: panelrad check MESH\n"
     "       panelrad check --builtin cube|prism:K|tetrahedron|octahedron\n"
-    "Reads an OFF or OBJ mesh (or builds a built-in scene) and validates it exactly as a closed\n"
-    "convex polyhedron. Exit status: 0 valid, 1 invalid or unreadable, 2 usage error.\n";
+    "Reads an OFF or OBJ mesh (or builds a built-in scene) and validates it as a scene: a closed\n"
+    "convex polyhedron (proven exactly: no visibility to compute), or any set of planar polygons\n"
+    "that do not cross, each piece consistently oriented (the visibility V(P,Q) is computed).\n"
+    "Exit status: 0 valid, 1 invalid or unreadable, 2 usage error.\n";
 
 /// What the command line says.
 struct CheckCommandLine {
@@ -53,7 +55,7 @@ int run_check(const CLI::App& app, const CheckCommandLine& line) {
   }
 
   const std::size_t input_faces = static_cast<std::size_t>(mesh.num_facets);
-  geometry::ValidationReport report = geometry::validate_closed_convex(mesh);
+  geometry::SceneValidationReport report = geometry::validate_scene(mesh);
   bool finite = true;
   for (const auto& p : mesh.vertices) finite = finite && p.allFinite();
 
@@ -71,8 +73,13 @@ int run_check(const CLI::App& app, const CheckCommandLine& line) {
   }
   for (const std::string& n : notes) std::cout << "note: " << n << "\n";
   for (const std::string& n : report.notes) std::cout << "note: " << n << "\n";
-  if (report.valid) {
+  if (report.valid && report.shape == geometry::SceneShape::convex) {
     std::cout << "valid: closed convex polyhedron\n";
+    return 0;
+  }
+  if (report.valid) {
+    std::cout << "valid: general scene (" << report.pieces << " piece" << (report.pieces == 1 ? "" : "s") << ", "
+              << report.closed_pieces << " closed): the visibility V(P,Q) is computed\n";
     return 0;
   }
   std::cout << "invalid: " << report.message << "\n";
@@ -83,7 +90,7 @@ int run_check(const CLI::App& app, const CheckCommandLine& line) {
 
 Command add_check(CLI::App& panelrad) {
   auto line = std::make_shared<CheckCommandLine>();
-  CLI::App* app = panelrad.add_subcommand("check", "validate a closed convex polyhedral mesh (OFF or OBJ)");
+  CLI::App* app = panelrad.add_subcommand("check", "validate a scene mesh (OFF or OBJ): convex, or general with its visibility computed");
   set_usage(*app, kCheckUsage);
   CLI::Option* mesh = app->add_option("MESH", line->file, "an OFF or OBJ mesh");
   CLI::Option* builtin =

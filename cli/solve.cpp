@@ -28,11 +28,13 @@ const char* kSolveUsage =
     "usage: panelrad solve SCENE [--levels L | --max-elements N] [--out PREFIX] [--materials JSON]\n"
     "                      [--formats csv,ply,vtk,png] [--method auto|dense|fast] [--eta E] [--degree M]\n"
     "                      [--near exact|quadrature] [--mu K] [--solver auto|neumann|gmres] [--tol T|auto]\n"
-    "                      [--threads T] [--quiet]\n"
+    "                      [--visibility auto|occluded] [--threads T] [--quiet]\n"
     "  SCENE: an OBJ whose MTL gives Kd (reflectivity rho) and Ke (emission E) per face through usemtl,\n"
     "  or an OFF with a JSON sidecar (SCENE with extension .json, or --materials) giving rho and E per\n"
-    "  facet. The scene must be a closed convex polyhedron. Every colour channel is solved with one\n"
-    "  operator. --levels L refines L times (n = 4^L n0); --max-elements N (default 20000) takes the\n"
+    "  facet. Any set of planar polygons: closed bodies (a room is seen from inside, the bodies in it\n"
+    "  from outside) and open surfaces (front side counter-clockwise). The line of sight V(P,Q) is\n"
+    "  computed unless the scene is proven convex (--visibility occluded: always). Every colour channel\n"
+    "  is solved with one operator. --levels L refines L times (n = 4^L n0); --max-elements N (default 20000) takes the\n"
     "  largest level with n <= N. Writes PREFIX.csv (per-element radiosity), PREFIX.ply (per-face\n"
     "  colours), PREFIX.vtk (ParaView) and PREFIX.png (a picture of the inside); PREFIX defaults to\n"
     "  the scene's name with '_radiosity' in the current directory. Progress goes to stderr\n"
@@ -106,6 +108,10 @@ void add_solve_options(CLI::App& app, SolveCommandLine& line) {
       ->type_name("auto|neumann|gmres")
       ->check(one_of({"auto", "neumann", "gmres"}));
   app.add_option("--tol", o.solver.tolerance)->type_name("T|auto")->transform(tolerance_in(1e-15, 0.5));
+  app.add_option_function<std::string>("--visibility",
+                                       [&o](const std::string& v) { o.visibility = parse_visibility(v); })
+      ->type_name("auto|occluded")
+      ->check(one_of({"auto", "occluded"}));
   app.add_option("--threads", line.threads)->type_name("T")->transform(thread_count());
   app.add_flag("--quiet", line.quiet);
 }
@@ -170,6 +176,15 @@ void print_summary(const Scene& scene, const std::string& scene_path, const Scen
               scene.num_channels(), scene.num_channels() > 1 ? "s" : "");
   std::printf("n = %d (level %d), h/diam = %.3e, %s\n", static_cast<int>(s.n), s.level, s.mesh_size / s.diameter,
               s.method.c_str());
+  const VisibilityWork& w = s.visibility_work;
+  if (!w.computed) {
+    std::printf("visibility: V = 1 (the scene is proven convex): no visibility work\n");
+  } else {
+    std::printf("visibility: V computed (%s scene): pairs %zu visible, %zu hidden, %zu partly visible; %zu elements "
+                "clipped to their visible part; %zu rays cast\n",
+                geometry::to_string(s.shape), w.visible_pairs, w.hidden_pairs, w.partial_pairs, w.clipped_elements,
+                w.rays_cast);
+  }
   if (s.self_check_error >= 0) {
     std::printf("fast product self-check: relative error %.2e (accepted up to %.2e%s)\n", s.self_check_error,
                 s.self_check_threshold, s.tightened ? ", after tightening" : "");
@@ -188,8 +203,17 @@ void print_summary(const Scene& scene, const std::string& scene_path, const Scen
     std::printf("%-8s %10d %10.2e %12.5e %12.5e %12.2e  %s\n", c.name.c_str(), c.iterations, c.residual, c.emitted,
                 c.absorbed, c.energy_mismatch, how.c_str());
   }
-  std::printf("energy balance: emitted = absorbed on a closed convex scene; mismatch expected below 0.5 h/diam = %.2e\n",
-              s.expected_energy_mismatch);
+  if (s.shape == geometry::SceneShape::convex) {
+    std::printf("energy balance: emitted = absorbed on a closed convex scene; mismatch expected below 0.5 h/diam = %.2e\n",
+                s.expected_energy_mismatch);
+  } else if (s.closed) {
+    std::printf("energy balance: emitted = absorbed in a closed scene; mismatch expected below 0.5 h/diam = %.2e\n",
+                s.expected_energy_mismatch);
+  } else {
+    std::printf("energy balance: the scene is open, so emitted = absorbed + escaped; escaped fraction:");
+    for (const ChannelSolution& c : s.channels) std::printf(" %s %.4f", c.name.c_str(), c.escaped);
+    std::printf("\n");
+  }
 }
 
 int run_solve(const CLI::App& app, const SolveCommandLine& command_line) {

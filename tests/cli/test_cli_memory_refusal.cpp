@@ -17,7 +17,7 @@
 namespace {
 
 using panelrad::testing::CliRun;
-const std::string kCornell = std::string(PANELRAD_SOURCE_DIR) + "/examples/scenes/cornell_box.obj";
+const std::string kCornell = std::string(PANELRAD_SOURCE_DIR) + "/examples/scenes/convex_box.obj";
 
 CliRun run(const std::string& args) { return panelrad::testing::run_cli(args); }
 
@@ -165,8 +165,8 @@ TEST(CliOptions, BadValuesNameTheOptionAndWhy) {
       {"cube --levels", "--levels: 1 required L missing"},
       {"cube --bogus 1", "unknown option '--bogus'"},
       {"cube 3", "unexpected argument '3'"},
-      {"solve " PANELRAD_SOURCE_DIR "/examples/scenes/cornell_box.obj second.obj",
-       "unexpected argument 'second.obj' after SCENE '" PANELRAD_SOURCE_DIR "/examples/scenes/cornell_box.obj'"},
+      {"solve " PANELRAD_SOURCE_DIR "/examples/scenes/convex_box.obj second.obj",
+       "unexpected argument 'second.obj' after SCENE '" PANELRAD_SOURCE_DIR "/examples/scenes/convex_box.obj'"},
       {"solve", "no scene given"},
       {"solve --bogus", "unknown option '--bogus'"},
       {"check --builtin cube --builtin octahedron", "--builtin: At Most 1 required but received 2"},

@@ -115,7 +115,7 @@ TEST_F(CliSolve, ProgressOnStderrQuietSilencesIt) {
 
 // Kd -> rho, Ke -> E per channel through usemtl: the red wall reflects red (paper (1) per channel).
 TEST_F(CliSolve, CornellBoxChannelsFollowTheMaterials) {
-  const CliRun r = run("solve " + kScenes + "cornell_box.obj --max-elements 600 --formats csv --out " + path("box"),
+  const CliRun r = run("solve " + kScenes + "convex_box.obj --max-elements 600 --formats csv --out " + path("box"),
                        "2>/dev/null");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_CONTAINS(r.output, "3 channels");

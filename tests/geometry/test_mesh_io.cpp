@@ -340,7 +340,7 @@ TEST(MeshIo, AgreesWithOpenMeshReader) {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("panelrad_openmesh_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   for (const std::string& path : {kMeshes + "cube.off", kMeshes + "hexagonal_prism.off", kMeshes + "triangular_prism.obj",
-                                  kMeshes + "l_block.off", kMeshes + "open_box.off", scenes + "cornell_box.obj",
+                                  kMeshes + "l_block.off", kMeshes + "open_box.off", scenes + "convex_box.obj",
                                   scenes + "prism_lamp.off"}) {
     SCOPED_TRACE(path);
     const std::string plain = (dir / std::filesystem::path(path).filename()).string();

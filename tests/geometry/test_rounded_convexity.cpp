@@ -103,7 +103,7 @@ const std::vector<Shipped>& shipped() {
       {"examples/meshes/triangular_prism.obj", ""},
       {"examples/meshes/l_block.off", "convex"},
       {"examples/meshes/open_box.off", "closed"},
-      {"examples/scenes/cornell_box.obj", ""},
+      {"examples/scenes/convex_box.obj", ""},
       {"examples/scenes/prism_lamp.off", ""},
   };
   return files;
@@ -174,7 +174,7 @@ TEST(RoundedConvexity, InputRoundingIsInferredFromTheCoordinates) {
   const auto rotated = [](double angle) {
     return [angle](const pg::Vec3& p) { return (Eigen::AngleAxisd(angle, pg::Vec3(1, 2, 3).normalized()) * p).eval(); };
   };
-  const std::string cornell = read_text(kSource + "/examples/scenes/cornell_box.obj");
+  const std::string cornell = read_text(kSource + "/examples/scenes/convex_box.obj");
   for (int d : {6, 9, 15}) {
     const pg::InputRounding r =
         pg::input_rounding(read_text_mesh(map_vertices(cornell, true, rotated(0.5), d), true, "cornell"));
@@ -191,12 +191,12 @@ TEST(RoundedConvexity, InputRoundingIsInferredFromTheCoordinates) {
 
 // The reported failures: the shipped Cornell box rotated 30 degrees about z at 17, 15, 6 digits.
 TEST(RoundedConvexity, RotatedCornellBoxIsAcceptedWithANote) {
-  const std::string text = read_text(kSource + "/examples/scenes/cornell_box.obj");
+  const std::string text = read_text(kSource + "/examples/scenes/convex_box.obj");
   const Eigen::AngleAxisd rot(std::numbers::pi / 6, pg::Vec3::UnitZ());
   for (int d : kDigits) {
     SCOPED_TRACE("digits " + std::to_string(d));
     pg::TriangleMesh m = read_text_mesh(map_vertices(text, true, [&](const pg::Vec3& p) { return (rot * p).eval(); }, d),
-                                        true, "cornell_box_rotated.obj");
+                                        true, "convex_box_rotated.obj");
     const double measured = worst_outside_distance(m) / diameter(m);
     const pg::ValidationReport r = pg::validate_closed_convex(m);
     ASSERT_TRUE(r.valid) << r.message;
@@ -365,10 +365,10 @@ TEST(RoundedConvexity, DentsAreRefused) {
 // walls) with a real dent in the ceiling: the refusal prints the first violation as a positive
 // number.
 TEST(RoundedConvexity, RefusalNeverPrintsAZeroViolation) {
-  const std::string text = read_text(kSource + "/examples/scenes/cornell_box.obj");
+  const std::string text = read_text(kSource + "/examples/scenes/convex_box.obj");
   const Eigen::AngleAxisd rot(std::numbers::pi / 6, pg::Vec3::UnitZ());
   pg::TriangleMesh m = read_text_mesh(map_vertices(text, true, [&](const pg::Vec3& p) { return (rot * p).eval(); }, 17),
-                                      true, "cornell_box_dented.obj");
+                                      true, "convex_box_dented.obj");
   m.vertices[9].z() -= 1e-3;  // ceiling grid vertex (1/3, 1/3, 1) pushed down
   const pg::ValidationReport r = pg::validate_closed_convex(m);
   ASSERT_FALSE(r.valid);

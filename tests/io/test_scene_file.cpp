@@ -187,7 +187,7 @@ TEST_F(SceneFile, OffJsonOneChannelByDefaultAndExplicitSidecar) {
 }
 
 TEST_F(SceneFile, ShippedCornellBoxLoads) {
-  const Scene s = load_channel_scene(kScenes + "cornell_box.obj");
+  const Scene s = load_channel_scene(kScenes + "convex_box.obj");
   ASSERT_EQ(s.num_channels(), 3u);
   ASSERT_EQ(s.mesh().num_facets, 14);
   int lights = 0;

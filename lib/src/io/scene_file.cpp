@@ -3,7 +3,7 @@
 // Every error names the file and the line or facet; nothing is returned partially.
 #include <panelrad/geometry/mesh_io.hpp>
 #include <panelrad/geometry/text_file.hpp>
-#include <panelrad/geometry/validation.hpp>
+#include <panelrad/geometry/scene_validation.hpp>
 #include <panelrad/io/scene_file.hpp>
 
 #include <nlohmann/json.hpp>
@@ -30,6 +30,7 @@ namespace fs = std::filesystem;
 // A scene file's data as it is read; a Scene once complete (to_scene).
 struct SceneData {
   geometry::TriangleMesh mesh;
+  geometry::SceneShape shape = geometry::SceneShape::convex;
   std::vector<std::string> channels;
   std::vector<std::vector<double>> rho, emission;  // [channel][facet], checked as read
   std::vector<std::string> facet_material;
@@ -37,7 +38,7 @@ struct SceneData {
 };
 
 Scene to_scene(SceneData&& data) {
-  Scene scene(std::move(data.mesh), std::move(data.channels));
+  Scene scene(std::move(data.mesh), std::move(data.channels), data.shape);
   for (std::size_t c = 0; c < data.rho.size(); ++c) {
     scene.set_reflectivity(std::move(data.rho[c]), c);
     scene.set_emissivity(std::move(data.emission[c]), c);
@@ -121,10 +122,12 @@ std::string join_from(const std::vector<std::string>& tokens, std::size_t first)
 /// Checks one value of rho or E; returns what is wrong, or "" when fine.
 std::string value_problem(bool is_rho, double v) { return is_rho ? reflectivity_problem(v) : emission_problem(v); }
 
-/// Reads and validates the mesh; notes get the reader's and the validator's notes. For an OBJ,
-/// `materials` (when given) gets its mtllib and per-face usemtl statements.
+/// Reads and validates the mesh as a scene (geometry::validate_scene: convex, or general with its
+/// visibility computed; `shape` says which); notes get the reader's and the validator's notes. For
+/// an OBJ, `materials` (when given) gets its mtllib and per-face usemtl statements.
 geometry::TriangleMesh load_mesh(const std::string& path, std::vector<std::string>& notes,
-                                 const geometry::TextReadOptions& options, geometry::ObjMaterialUse* materials = nullptr) {
+                                 const geometry::TextReadOptions& options, geometry::SceneShape& shape,
+                                 geometry::ObjMaterialUse* materials = nullptr) {
   geometry::TriangleMesh mesh;
   try {
     mesh = materials ? geometry::read_obj_with_materials(path, *materials, &notes, options)
@@ -132,8 +135,9 @@ geometry::TriangleMesh load_mesh(const std::string& path, std::vector<std::strin
   } catch (const geometry::MeshError& e) {
     throw SceneFileError(e.what());
   }
-  const geometry::ValidationReport report = geometry::validate_closed_convex(mesh);
+  const geometry::SceneValidationReport report = geometry::validate_scene(mesh);
   if (!report.valid) fail(path, 0, "invalid scene mesh: " + report.message);
+  shape = report.shape;
   for (const std::string& n : report.notes) notes.push_back(path + ": " + n);
   return mesh;
 }
@@ -344,7 +348,7 @@ void assign_materials(SceneData& scene, const geometry::ObjMaterialUse& use, con
 SceneData load_obj_scene(const std::string& path, const geometry::TextReadOptions& options) {
   SceneData scene;
   geometry::ObjMaterialUse use;  // mtllib and per-face usemtl, as the reader counted the faces
-  scene.mesh = load_mesh(path, scene.notes, options, &use);
+  scene.mesh = load_mesh(path, scene.notes, options, scene.shape, &use);
   check_face_materials(use, static_cast<std::size_t>(scene.mesh.num_facets), path);
   const std::vector<std::pair<std::string, long>> libraries = mtl_libraries(use, path);
   const MaterialLibrary library = read_materials(libraries, path, scene.notes, options);
@@ -727,7 +731,7 @@ void assign_facet_values(SceneData& scene, const FacetEntries& entries, const De
 SceneData load_off_scene(const std::string& path, const std::string& materials_path,
                             const geometry::TextReadOptions& options) {
   SceneData scene;
-  scene.mesh = load_mesh(path, scene.notes, options);
+  scene.mesh = load_mesh(path, scene.notes, options, scene.shape);
   const auto nf = static_cast<std::size_t>(scene.mesh.num_facets);
   const std::string file = sidecar_path(path, materials_path);
   JsonLayout layout;

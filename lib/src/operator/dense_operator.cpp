@@ -1,4 +1,7 @@
 #include <panelrad/operator/dense_operator.hpp>
+
+#include "visible_covering.hpp"
+
 #include <panelrad/support/resources.hpp>
 
 #include <limits>
@@ -28,12 +31,41 @@ void DenseOperator::check_fits(geometry::Index n) {
   }
 }
 
-DenseOperator::DenseOperator(const Collocation& collocation, const NearFieldOptions& options) {
+DenseOperator::DenseOperator(const Collocation& collocation, const NearFieldOptions& options,
+                             std::shared_ptr<const geometry::Occluders> occluders) {
   const geometry::Index n = collocation.size();
   check_fits(n);
   K_.resize(n, n);
   const NearFieldIntegrator integrate(options, collocation.tree().mesh_size());
   const auto elements = collocation.tree().elements();
+  if (occluders) {
+    K_.setZero();  // hidden elements stay 0
+    std::size_t visible = 0, hidden = 0, partial = 0, clipped = 0;
+#pragma omp parallel reduction(+ : visible, hidden, partial, clipped)
+    {
+      VisibleCoveringScratch scratch;
+      VisibilityCounts counts;
+#pragma omp for schedule(dynamic, 8)
+      for (geometry::Index i = 0; i < n; ++i) {
+        const double rho = collocation.reflectivity()[i];
+        if (rho == 0) continue;
+        cover_visible(
+            collocation.tree(), *occluders, collocation.collocation_point(i), collocation.normal(i), 0.0, integrate,
+            [](int, geometry::Index) {}, [&](geometry::Index j, double value) { K_(i, j) = rho * value; }, counts,
+            scratch);
+      }
+      visible += counts.visible;
+      hidden += counts.hidden;
+      partial += counts.partial;
+      clipped += counts.clipped;
+    }
+    occluded_ = true;
+    visible_pairs_ = visible;
+    hidden_pairs_ = hidden;
+    partial_pairs_ = partial;
+    clipped_elements_ = clipped;
+    return;
+  }
 #pragma omp parallel for schedule(dynamic, 8)
   for (geometry::Index i = 0; i < n; ++i) {
     const Vec3& P = collocation.collocation_point(i);

@@ -1,4 +1,6 @@
 #include <panelrad/operator/fast_operator.hpp>
+
+#include "visible_covering.hpp"
 #include <panelrad/geometry/admissibility.hpp>
 #include <panelrad/operator/kernel.hpp>
 #include <panelrad/quadrature/exact_integrals.hpp>
@@ -198,13 +200,17 @@ std::vector<FastOperator::RowBlock> FastOperator::cover_rows(const Collocation& 
   const Index num_blocks = (row_end_ - row_begin_ + kRowBlock - 1) / kRowBlock;
   std::vector<RowBlock> blocks(static_cast<std::size_t>(num_blocks));
   std::size_t skipped = 0, skipped_rows = 0;
+  std::size_t visible = 0, hidden = 0, partial = 0, clipped = 0;
+  const geometry::Occluders* occluders = options_.occluders.get();
   bool out_of_memory = false;
-#pragma omp parallel for schedule(dynamic, 1) reduction(+ : skipped, skipped_rows)
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : skipped, skipped_rows, visible, hidden, partial, clipped)
   for (Index b = 0; b < num_blocks; ++b) try {
     RowBlock& blk = blocks[static_cast<std::size_t>(b)];
     const Index first = row_begin_ + b * kRowBlock, last = std::min(row_end_, first + kRowBlock);
     blk.near_count.assign(static_cast<std::size_t>(last - first), 0);
     blk.far_count.assign(static_cast<std::size_t>(last - first), 0);
+    VisibleCoveringScratch scratch;
+    VisibilityCounts counts;
     for (Index i = first; i < last; ++i) {
       const double rho = rho_[static_cast<std::size_t>(i)];
       if (rho == 0) {  // the row is zero: not computed
@@ -214,21 +220,36 @@ std::vector<FastOperator::RowBlock> FastOperator::cover_rows(const Collocation& 
       const Vec3& P = point_[static_cast<std::size_t>(i)];
       const Vec3& nP = normal_[static_cast<std::size_t>(i)];
       std::int64_t nn = 0, nf = 0;
-      cover(
-          tree, P, collocation.facet(i), options_.eta,
-          [&](int l, Index k) {
-            blk.far_cluster.push_back(cluster_id(l, k));
-            ++nf;
-          },
-          [&](Index e) {
-            blk.near_col.push_back(e);
-            blk.near_val.push_back(rho * integrate_near(P, nP, tree.cluster(L, e)));  // (43), first sum
-            ++nn;
-          },
-          [&]() { ++skipped; });
+      const auto add_far = [&](int l, Index k) {
+        blk.far_cluster.push_back(cluster_id(l, k));
+        ++nf;
+      };
+      if (occluders) {
+        cover_visible(
+            tree, *occluders, P, nP, options_.eta, integrate_near, add_far,
+            [&](Index e, double value) {
+              blk.near_col.push_back(e);
+              blk.near_val.push_back(rho * value);  // (43), first sum, over the visible part
+              ++nn;
+            },
+            counts, scratch);
+      } else {
+        cover(
+            tree, P, collocation.facet(i), options_.eta, add_far,
+            [&](Index e) {
+              blk.near_col.push_back(e);
+              blk.near_val.push_back(rho * integrate_near(P, nP, tree.cluster(L, e)));  // (43), first sum
+              ++nn;
+            },
+            [&]() { ++skipped; });
+      }
       blk.near_count[static_cast<std::size_t>(i - first)] = nn;
       blk.far_count[static_cast<std::size_t>(i - first)] = nf;
     }
+    visible += counts.visible;
+    hidden += counts.hidden;
+    partial += counts.partial;
+    clipped += counts.clipped;
   } catch (const std::bad_alloc&) {
 #pragma omp atomic write
     out_of_memory = true;
@@ -241,6 +262,11 @@ std::vector<FastOperator::RowBlock> FastOperator::cover_rows(const Collocation& 
   }
   stats_.skipped_coplanar = skipped;
   stats_.skipped_rows = skipped_rows;
+  stats_.occluded = occluders != nullptr;
+  stats_.visible_pairs = visible;
+  stats_.hidden_pairs = hidden;
+  stats_.partial_pairs = partial;
+  stats_.clipped_elements = clipped;
   return blocks;
 }
 
@@ -531,9 +557,12 @@ void FastOperator::self_check_products(const std::vector<Index>& rows,
   exact.assign(S * V, 0.0);
   scale.assign(S * V, 0.0);
   fast.assign(S * V, 0.0);
+  const geometry::Occluders* occluders = options_.occluders.get();
+  const NearFieldIntegrator exact_near(NearFieldOptions{}, tree_->mesh_size());  // the closed form
 #pragma omp parallel
   {
     std::vector<double> scratch(static_cast<std::size_t>(terms_));
+    VisibleCoveringScratch covering;
 #pragma omp for schedule(dynamic, 1)
     for (std::size_t r = 0; r < S; ++r) {
       const Index i = rows[r];
@@ -543,15 +572,25 @@ void FastOperator::self_check_products(const std::vector<Index>& rows,
       if (rho != 0) {
         const Vec3& P = point_[static_cast<std::size_t>(i)];
         const Vec3& nP = normal_[static_cast<std::size_t>(i)];
-        const Index fi = elements[static_cast<std::size_t>(i)].facet;
-        for (Index j = 0; j < n_; ++j) {
-          const Cluster& e = elements[static_cast<std::size_t>(j)];
-          if (e.facet == fi) continue;  // coplanar: G = 0
-          const double kij = rho * quadrature::form_factor(P, nP, e.vertex[0], e.vertex[1], e.vertex[2], e.normal);
+        const auto add = [&](Index j, double form_factor) {
+          const double kij = rho * form_factor;
           const double* vj = &values[static_cast<std::size_t>(j) * 2 * V];
           for (std::size_t k = 0; k < V; ++k) {
             ex[k] += kij * vj[2 * k];
             sc[k] += kij * vj[2 * k + 1];
+          }
+        };
+        if (occluders) {
+          // The exact row with V: every element's closed-form form factor over its visible part,
+          // by the walk with nothing admissible (eta = 0).
+          VisibilityCounts counts;
+          cover_visible(*tree_, *occluders, P, nP, 0.0, exact_near, [](int, Index) {}, add, counts, covering);
+        } else {
+          const Index fi = elements[static_cast<std::size_t>(i)].facet;
+          for (Index j = 0; j < n_; ++j) {
+            const Cluster& e = elements[static_cast<std::size_t>(j)];
+            if (e.facet == fi) continue;  // coplanar: G = 0
+            add(j, quadrature::form_factor(P, nP, e.vertex[0], e.vertex[1], e.vertex[2], e.normal));
           }
         }
       }

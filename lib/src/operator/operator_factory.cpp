@@ -24,25 +24,82 @@ OperatorMethod parse_operator_method(const std::string& name) {
 
 const char* to_string(Visibility visibility) {
   switch (visibility) {
+    case Visibility::automatic: return "auto";
     case Visibility::unoccluded: return "unoccluded";
+    case Visibility::occluded: return "occluded";
   }
   return "?";
 }
 
+Visibility parse_visibility(const std::string& name) {
+  if (name == "auto") return Visibility::automatic;
+  if (name == "unoccluded") return Visibility::unoccluded;
+  if (name == "occluded") return Visibility::occluded;
+  throw std::invalid_argument("visibility '" + name + "' is not auto, unoccluded or occluded");
+}
+
+VisibilityWork visibility_work(const RadiosityOperator& op) {
+  VisibilityWork w;
+  if (const auto* fast = dynamic_cast<const FastOperator*>(&op)) {
+    const FastStatistics& s = fast->statistics();
+    w.computed = s.occluded;
+    w.visible_pairs = s.visible_pairs;
+    w.hidden_pairs = s.hidden_pairs;
+    w.partial_pairs = s.partial_pairs;
+    w.clipped_elements = s.clipped_elements;
+    w.rays_cast = s.rays_cast;
+  } else if (const auto* dense = dynamic_cast<const DenseOperator*>(&op)) {
+    w.computed = dense->occluded();
+    w.visible_pairs = dense->visible_pairs();
+    w.hidden_pairs = dense->hidden_pairs();
+    w.partial_pairs = dense->partial_pairs();
+    w.clipped_elements = dense->clipped_elements();
+  }
+  return w;
+}
+
+namespace {
+
+/// The scene's faces as occluders: the level-0 triangles of the cluster tree (the validated,
+/// oriented input triangles; refinement adds no face).
+std::shared_ptr<const geometry::Occluders> scene_occluders(const geometry::ClusterTree& tree) {
+  geometry::TriangleMesh faces;
+  faces.source = "scene faces";
+  const auto roots = tree.level(0);
+  faces.vertices.reserve(3 * roots.size());
+  for (const geometry::Cluster& c : roots) {
+    const auto first = static_cast<geometry::Index>(faces.vertices.size());
+    for (const Vec3& v : c.vertex) faces.vertices.push_back(v);
+    faces.triangles.push_back({first, first + 1, first + 2});
+    faces.facet_of_triangle.push_back(c.facet);
+  }
+  faces.num_facets = tree.num_facets();
+  return std::make_shared<const geometry::Occluders>(faces);
+}
+
+}  // namespace
+
 std::unique_ptr<RadiosityOperator> make_operator(const Collocation& collocation, const OperatorOptions& options,
                                                  Visibility visibility, const SetupProgress& progress) {
-  // The one policy: V(P, Q) = 1, exact on a convex surface (operator_factory.hpp); both operators
-  // integrate G without a visibility factor.
-  if (visibility != Visibility::unoccluded) throw std::invalid_argument("make_operator: unknown visibility policy");
+  // unoccluded: V = 1, exact on a convex surface (operator_factory.hpp); both operators integrate
+  // G without a visibility factor and do no visibility work. occluded: V from the scene's faces.
+  if (visibility == Visibility::automatic)
+    throw std::invalid_argument("make_operator: visibility 'auto' is not an operator: unoccluded or occluded "
+                                "(the solver resolves auto from the scene's shape)");
+  const std::shared_ptr<const geometry::Occluders> occluders =
+      visibility == Visibility::occluded ? scene_occluders(collocation.tree()) : nullptr;
   switch (options.method) {
     case OperatorMethod::dense:
-      if (progress) progress("dense matrix, n = " + std::to_string(collocation.size()));
-      return std::make_unique<DenseOperator>(collocation, options.near);
+      if (progress)
+        progress("dense matrix, n = " + std::to_string(collocation.size()) +
+                 (occluders ? ", with visibility" : ""));
+      return std::make_unique<DenseOperator>(collocation, options.near, occluders);
     case OperatorMethod::fast: {
       FastOptions fast;
       static_cast<ClusteringParameters&>(fast) = options;
       fast.near = options.near;
       fast.progress = progress;
+      fast.occluders = occluders;
       return std::make_unique<FastOperator>(collocation, fast);
     }
     case OperatorMethod::automatic: break;

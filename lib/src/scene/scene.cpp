@@ -78,10 +78,29 @@ void check_value(bool is_rho, double v, const std::string& where, const std::str
                               where + ", channel " + channel + ", " + problem);
 }
 
+/// Every undirected edge (by vertex index) in exactly two triangles.
+bool every_edge_shared_twice(const geometry::TriangleMesh& mesh) {
+  std::vector<std::pair<Index, Index>> edges;
+  edges.reserve(3 * mesh.triangles.size());
+  for (const auto& t : mesh.triangles)
+    for (int s = 0; s < 3; ++s) edges.emplace_back(std::min(t[s], t[(s + 1) % 3]), std::max(t[s], t[(s + 1) % 3]));
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t k = 0; k < edges.size();) {
+    std::size_t m = k;
+    while (m < edges.size() && edges[m] == edges[k]) ++m;
+    if (m - k != 2) return false;
+    k = m;
+  }
+  return true;
+}
+
 }  // namespace
 
 Scene::Scene(geometry::TriangleMesh validated_mesh, std::vector<std::string> channels)
-    : mesh_(std::move(validated_mesh)), channels_(std::move(channels)) {
+    : Scene(std::move(validated_mesh), std::move(channels), geometry::SceneShape::convex) {}
+
+Scene::Scene(geometry::TriangleMesh validated_mesh, std::vector<std::string> channels, geometry::SceneShape shape)
+    : mesh_(std::move(validated_mesh)), channels_(std::move(channels)), shape_(shape) {
   if (mesh_.triangles.empty()) throw std::invalid_argument("scene: empty mesh");
   if (channels_.empty()) throw std::invalid_argument("scene: no channels");
   for (std::size_t c = 0; c < channels_.size(); ++c) {
@@ -89,6 +108,7 @@ Scene::Scene(geometry::TriangleMesh validated_mesh, std::vector<std::string> cha
     for (std::size_t d = 0; d < c; ++d)
       if (channels_[d] == channels_[c]) throw std::invalid_argument("scene: channel '" + channels_[c] + "' is named twice");
   }
+  closed_ = every_edge_shared_twice(mesh_);
   data_.resize(channels_.size());
   for (Channel& ch : data_) {
     ch.rho_facet.assign(static_cast<std::size_t>(mesh_.num_facets), 0.0);
@@ -97,7 +117,9 @@ Scene::Scene(geometry::TriangleMesh validated_mesh, std::vector<std::string> cha
 }
 
 Scene Scene::load(const std::string& path_or_builtin, std::vector<std::string>* notes) {
-  return Scene(geometry::load_closed_convex(path_or_builtin, notes));
+  geometry::SceneShape shape = geometry::SceneShape::convex;
+  geometry::TriangleMesh mesh = geometry::load_scene_mesh(path_or_builtin, shape, notes);
+  return Scene(std::move(mesh), {"value"}, shape);
 }
 
 const Scene::Channel& Scene::channel(std::size_t c) const {
@@ -161,6 +183,9 @@ void Scene::set_manufactured_solution(SurfaceFunction u, double rel_tol) {
   if (channels_.size() != 1)
     throw std::logic_error("manufactured solution: a scalar scene (one channel) only, this one has " +
                            std::to_string(channels_.size()));
+  if (shape_ != geometry::SceneShape::convex)
+    throw std::logic_error("manufactured solution: E = u - K u is integrated with V = 1, exact on a convex scene "
+                           "only; this scene is general (its visibility is computed)");
   if (!u) throw std::invalid_argument("manufactured solution: empty function");
   if (!(rel_tol > 0 && rel_tol < 1)) throw std::invalid_argument("manufactured solution: rel_tol must be in (0,1)");
   solution_ = std::move(u);

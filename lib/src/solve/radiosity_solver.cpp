@@ -70,6 +70,12 @@ void RadiositySolver::setup() {
   if (options_.fold_reflectivity && scene_.num_channels() != 1)
     throw std::invalid_argument("fold_reflectivity: the operator takes one channel's rho, the scene has " +
                                 std::to_string(scene_.num_channels()));
+  info_.visibility = options_.visibility;
+  if (info_.visibility == Visibility::automatic)
+    info_.visibility = scene_.shape() == geometry::SceneShape::convex ? Visibility::unoccluded : Visibility::occluded;
+  if (info_.visibility == Visibility::unoccluded && scene_.shape() != geometry::SceneShape::convex)
+    throw std::invalid_argument("visibility: V = 1 (unoccluded) is exact on a convex scene only, and this scene is "
+                                "not proven convex; use auto or occluded");
   info_.conditioning_reflectivity = scene_.max_reflectivity();  // NaN: rho given as a function
   choose_parameters_and_plan();
   discretize();
@@ -127,7 +133,7 @@ std::unique_ptr<RadiosityOperator> RadiositySolver::make(const Collocation& rows
   stage_ = "building the operator (" + describe_parameters(op) + ")";
   stage_bytes_ = info_.memory.op;
   // The operator's own stages (near field, far field) are named by its progress lines.
-  return make_operator(rows, op, options_.visibility, [this](const std::string& line) {
+  return make_operator(rows, op, info_.visibility, [this](const std::string& line) {
     stage_ = "building the operator: " + line;
     say(line);
   });

@@ -33,6 +33,8 @@ void copy_setup(const RadiositySolver& solver, SceneSolution& out) {
     out.self_check_threshold = info.self_check_threshold;
   }
   out.tightened = info.tightened;
+  out.visibility = info.visibility;
+  out.visibility_work = visibility_work(solver.op());
   out.subdivision_s = info.subdivision_s;
   out.operator_s = info.operator_s;
   out.operator_bytes = info.operator_bytes;
@@ -83,6 +85,7 @@ void energy_balance(const ElementField& field, std::size_t c, ChannelSolution& c
     ch.absorbed += a * (1 - rho[i]) * ch.irradiance[i];
   }
   ch.energy_mismatch = ch.emitted != 0 ? std::abs(ch.emitted - ch.absorbed) / std::abs(ch.emitted) : 0;
+  ch.escaped = ch.emitted != 0 ? (ch.emitted - ch.absorbed) / ch.emitted : 0;
 }
 
 // (I - diag(rho_c) H) u_c = E_c, (32), and the energy balance.
@@ -122,10 +125,10 @@ ChannelSolution solve_channel(const RadiositySolver& solver, const SceneSolution
 void channel_warnings(const ChannelSolution& ch, SceneSolution& out) {
   if (!ch.shared_with.empty()) return;
   if (ch.status != SolveStatus::converged) out.warnings.push_back("channel " + ch.name + ": " + ch.message);
-  if (ch.energy_mismatch > 4 * out.expected_energy_mismatch)
+  if (out.closed && ch.energy_mismatch > 4 * out.expected_energy_mismatch)
     out.warnings.push_back(std::string("channel ") + ch.name +
                            fmt(": energy mismatch %.2e is far above its expected size %.2e (0.5 h/diam): is the "
-                               "scene really closed and convex, or the operator inaccurate?",
+                               "operator inaccurate?",
                                ch.energy_mismatch, out.expected_energy_mismatch));
 }
 
@@ -143,6 +146,8 @@ SceneSolution solve_scene(const Scene& scene, const RadiositySolverOptions& opti
   const RadiositySolver solver(scene, o);
   SceneSolution out;
   copy_setup(solver, out);
+  out.shape = scene.shape();
+  out.closed = scene.closed();
   const auto say = [&](const std::string& line) {
     if (options.progress) options.progress(line);
   };

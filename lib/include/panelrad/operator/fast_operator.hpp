@@ -7,6 +7,7 @@
 // An operator may own only the rows [begin, end) of K_n (FastOptions::rows): the coverings (42),
 // near field (43) and far coefficients (44)-(45) of those rows; the cluster moments (48) of a
 // product still need all of v.
+#include <panelrad/geometry/occluders.hpp>
 #include <panelrad/operator/clustering_parameters.hpp>
 #include <panelrad/operator/collocation.hpp>
 #include <panelrad/operator/far_field.hpp>
@@ -49,6 +50,10 @@ struct FastOptions : ClusteringParameters {
   /// (std::invalid_argument otherwise). With fewer than n rows, apply() throws and apply_rows()
   /// gives the rows held.
   RowRange rows;
+  /// The scene's faces, when V(P, Q) is computed (Visibility::occluded in operator_factory.hpp):
+  /// the coverings (42) classify each (P_i, cluster) pair as fully visible, hidden or partly
+  /// visible (visible_covering.hpp). Empty: V = 1 (a convex scene), no visibility work at all.
+  std::shared_ptr<const geometry::Occluders> occluders;
 };
 
 /// What setup found and stored: the covering's counts (over the rows held).
@@ -57,6 +62,12 @@ struct FastStatistics {
   std::size_t far_pairs = 0;           ///< (P_i, cluster) pairs in the far field
   std::size_t skipped_coplanar = 0;    ///< clusters skipped as coplanar with P_i (whole subtrees)
   std::size_t skipped_rows = 0;        ///< rows with rho(P_i) = 0, not computed
+  bool occluded = false;               ///< V(P, Q) computed (FastOptions::occluders)
+  std::size_t visible_pairs = 0;       ///< occluded: (P_i, cluster) pairs classified fully visible
+  std::size_t hidden_pairs = 0;        ///< occluded: pairs classified hidden (skipped with their subtrees)
+  std::size_t partial_pairs = 0;       ///< occluded: pairs classified partly visible (refined or clipped)
+  std::size_t clipped_elements = 0;    ///< occluded: near-field elements integrated over their visible part
+  std::size_t rays_cast = 0;           ///< rays cast for V (0: every decision is a shaft classification)
   bool far_stored = false;             ///< coefficients stored (true) or recomputed per product
   std::size_t bytes = 0;               ///< bytes held by the operator
   double geometry_s = 0;   ///< setup: cluster frames and element moments

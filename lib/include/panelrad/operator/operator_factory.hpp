@@ -20,13 +20,32 @@ const char* to_string(OperatorMethod method);
 /// The inverse of to_string; anything else is a std::invalid_argument listing the valid names.
 OperatorMethod parse_operator_method(const std::string& name);
 
-/// Which pairs of points see each other. The kernel G(P, Q) of (2)-(3) carries the visibility
-/// V(P, Q) in {0, 1}; the only policy today is `unoccluded` (V = 1 for every pair), which is exact
-/// on the surface of a convex solid: every segment between two of its points lies inside it, so
-/// nothing occludes it. The scene's convexity is proven by the exact check
-/// geometry::validate_closed_convex when the scene is made.
-enum class Visibility { unoccluded };
-const char* to_string(Visibility visibility);  ///< "unoccluded"
+/// Which pairs of points see each other. The kernel of (1) is G(P, Q) V(P, Q), V in {0, 1} the
+/// line-of-sight function.
+/// - unoccluded: V = 1 for every pair, exact on the surface of a convex solid (every segment
+///   between two of its points lies inside it, so nothing occludes it); the paper's setting. The
+///   scene's convexity is proven by the exact check geometry::validate_closed_convex when the
+///   scene is made (geometry::SceneShape::convex).
+/// - occluded: V computed from the scene's faces (geometry/occluders.hpp), with G clamped to the
+///   front of both planes: each (P_i, cluster) pair of the covering (42) is fully visible (the
+///   Taylor far field when admissible), hidden (skipped) or partly visible (refined; at the
+///   elements, the closed-form form factor of the visible part).
+/// - automatic: occluded unless the scene is proven convex (a solver's choice; not an operator).
+enum class Visibility { automatic, unoccluded, occluded };
+const char* to_string(Visibility visibility);  ///< "auto" | "unoccluded" | "occluded"
+/// The inverse of to_string; anything else is a std::invalid_argument listing the valid names.
+Visibility parse_visibility(const std::string& name);
+
+/// What the visibility computation of an occluded operator did: the (P_i, cluster) pairs of the
+/// coverings (42) classified fully visible, hidden and partly visible, the elements integrated
+/// over their visible part, and the rays cast. All 0 for an unoccluded operator, which does no
+/// visibility work.
+struct VisibilityWork {
+  bool computed = false;  ///< the operator computes V
+  std::size_t visible_pairs = 0, hidden_pairs = 0, partial_pairs = 0, clipped_elements = 0, rays_cast = 0;
+};
+/// The work of a DenseOperator or FastOperator (an unknown operator: none).
+VisibilityWork visibility_work(const RadiosityOperator& op);
 
 /// A concrete operator: method dense or fast, the near rule, and eta, M of the fast method
 /// (ClusteringParameters; ignored by the dense method).
@@ -41,8 +60,9 @@ struct OperatorOptions : ClusteringParameters {
 using SetupProgress = std::function<void(const std::string&)>;
 
 /// The operator with rows weighted by the collocation's reflectivity (33):
-/// (K_n v)_i = rho(P_i)/pi Int_S v G(P_i, Q) dS_Q. options.method automatic is a
-/// std::invalid_argument (choose_parameters resolves it).
+/// (K_n v)_i = rho(P_i)/pi Int_S v G(P_i, Q) V(P_i, Q) dS_Q. options.method automatic and
+/// visibility automatic are std::invalid_argument (the solver resolves them). With occluded, the
+/// occluders are the level-0 triangles of the collocation's tree (the scene's faces).
 std::unique_ptr<RadiosityOperator> make_operator(const Collocation& collocation, const OperatorOptions& options,
                                                  Visibility visibility = Visibility::unoccluded,
                                                  const SetupProgress& progress = {});

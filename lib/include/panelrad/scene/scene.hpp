@@ -7,6 +7,7 @@
 // Every value of rho and E passes one rule, reflectivity_problem / emission_problem: per-facet
 // data when it is set, functions where they are evaluated (each collocation point).
 #include <panelrad/geometry/mesh.hpp>
+#include <panelrad/geometry/scene_validation.hpp>
 
 #include <cstddef>
 #include <functional>
@@ -45,10 +46,20 @@ class Scene {
   /// channels' names (at least one, distinct, non-empty). Reflectivity defaults to 0 and
   /// emission to 1 everywhere in every channel.
   explicit Scene(geometry::TriangleMesh validated_mesh, std::vector<std::string> channels = {"value"});
-  /// Reads and validates a mesh file, or "builtin:NAME" (cube, prism:K, tetrahedron, octahedron).
+  /// Takes a mesh that passed geometry::validate_scene with the shape it found: convex (V = 1,
+  /// the paper's setting) or general (the solver computes V(P, Q)).
+  Scene(geometry::TriangleMesh validated_mesh, std::vector<std::string> channels, geometry::SceneShape shape);
+  /// Reads and validates (geometry::load_scene_mesh) a mesh file, or "builtin:NAME" (cube, prism:K,
+  /// tetrahedron, octahedron): convex scenes and general ones.
   static Scene load(const std::string& path_or_builtin, std::vector<std::string>* notes = nullptr);
 
   const geometry::TriangleMesh& mesh() const { return mesh_; }
+  /// convex: proven by the exact check, V = 1 and no visibility work; general: V is computed.
+  geometry::SceneShape shape() const { return shape_; }
+  /// Every edge of the triangulation is shared by exactly two triangles: each piece is a closed
+  /// body, so all light stays in the scene (the energy balance emitted = absorbed holds). False
+  /// for an open room, or a block standing on a floor it does not share edges with.
+  bool closed() const { return closed_; }
   Index num_facets() const { return mesh_.num_facets; }
   /// Inner unit normal of input triangle t (points into the solid), (2).
   Vec3 triangle_inner_normal(Index t) const;
@@ -69,7 +80,7 @@ class Scene {
   void set_emissivity(std::vector<double> per_facet, std::size_t channel = 0);
   void set_emissivity(SurfaceFunction e, std::size_t channel = 0);
   /// E := u - K u, with K u integrated to relative accuracy `rel_tol` over the exact surface.
-  /// Scalar scenes only (one channel; std::logic_error otherwise). E may then be negative
+  /// Scalar convex scenes only (one channel, V = 1; std::logic_error otherwise). E may then be negative
   /// somewhere: it is derived, not data, and is not held to emission_problem.
   void set_manufactured_solution(SurfaceFunction u, double rel_tol = 1e-11);
 
@@ -110,6 +121,8 @@ class Scene {
 
   geometry::TriangleMesh mesh_;
   std::vector<std::string> channels_;
+  geometry::SceneShape shape_ = geometry::SceneShape::convex;
+  bool closed_ = true;
   std::vector<Channel> data_;
   SurfaceFunction solution_;
   double solution_tol_ = 1e-11;

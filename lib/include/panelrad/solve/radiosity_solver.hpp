@@ -68,7 +68,10 @@ struct RadiositySolverOptions {
   /// Fast method with manual parameters: tighten them after a failed self-check, as automatic
   /// parameters always are (step 6).
   bool tighten_on_failed_check = false;
-  Visibility visibility = Visibility::unoccluded;  ///< passed to make_operator
+  /// V(P, Q): automatic computes it unless the scene is proven convex (Scene::shape), which is
+  /// the paper's setting with no visibility work at all; occluded computes it on any scene;
+  /// unoccluded on a general scene is a std::invalid_argument (V = 1 would be wrong there).
+  Visibility visibility = Visibility::automatic;
   /// The iteration: kind (automatic: choose_solver), tolerance (<= 0: discretization_tolerance(h,
   /// diam)), max_iterations, GMRES restart; its per-product callback is used when `progress` is
   /// empty.
@@ -108,6 +111,7 @@ struct RadiositySolverInfo {
   double mesh_size = 0, diameter = 0;  ///< h (longest element edge) and the surface's diameter
   double conditioning_reflectivity = 0;  ///< rho_max over all channels (step 2)
   OperatorOptions parameters;          ///< the operator that was built (after tightening)
+  Visibility visibility = Visibility::unoccluded;  ///< resolved: unoccluded or occluded
   std::optional<FastSelfCheck> self_check;  ///< fast method: the last operator's check
   double self_check_threshold = 0;     ///< fast method: self_check_threshold(size, rho_max)
   int tightened = 0;                   ///< times automatic parameters were tightened

@@ -26,10 +26,12 @@ struct ChannelSolution {
   double residual = 0;         ///< ||E - (I - K) u||_inf / ||E||_inf
   double error_estimate = 0;   ///< solver's bound on ||u_n - u^(k)||_inf
   std::string shared_with;     ///< non-empty: identical data to this channel, solution copied
-  /// Energy balance on a closed convex scene (every ray hits the surface): emitted power
-  /// sum A_i E_i equals absorbed power sum A_i (1 - rho_i) H_i.
+  /// Energy balance: emitted power sum A_i E_i against absorbed power sum A_i (1 - rho_i) H_i.
+  /// Equal in a closed scene (every ray from a front side hits a face); in an open one the
+  /// difference is the power that escapes.
   double emitted = 0, absorbed = 0;
   double energy_mismatch = 0;  ///< |emitted - absorbed| / emitted (0 when nothing is emitted)
+  double escaped = 0;          ///< (emitted - absorbed) / emitted: open scenes, the power fraction that leaves
 };
 
 struct SceneSolution {
@@ -37,6 +39,10 @@ struct SceneSolution {
   geometry::Index n = 0;
   double mesh_size = 0, diameter = 0;
   std::string method;                  ///< describe_parameters() of the operator that ran
+  geometry::SceneShape shape = geometry::SceneShape::convex;  ///< Scene::shape
+  bool closed = true;                  ///< Scene::closed: the energy balance applies
+  Visibility visibility = Visibility::unoccluded;  ///< resolved (RadiositySolverInfo::visibility)
+  VisibilityWork visibility_work;      ///< what computing V did (all 0 when unoccluded)
   OperatorOptions parameters;          ///< the operator that ran
   double self_check_error = -1;        ///< fast operator's measured relative product error; -1: dense
   double self_check_threshold = 0;     ///< self_check_threshold(size, rho_max over all channels)

@@ -1,0 +1,119 @@
+// The cost of the line-of-sight function V(P, Q) in the fast product (section 4 with the shaft
+// classification of each (P_i, cluster) pair, lib/src/operator/visible_covering.hpp), measured in
+// one run for each level:
+//   - the paper's cube (convex) without visibility: V = 1, today's path;
+//   - the same cube with V computed anyway (occluded): the overhead of classifying on a scene that
+//     needs none;
+//   - a general scene (default: the real Cornell box; with n0 = 48 its level L has the n of the
+//     cube's level L + 1, n = 48 4^L).
+// Each row: n, the operator's setup time (covering (42) with the classification, near field (43),
+// far coefficients), the time of one product K_n v (median of 9), the bytes held per element, and
+// the pairs classified. The parameters are the same for every row of a level: choose_parameters for
+// the cube's size (the automatic choice at 5% of the discretization error, rho_max 0.5).
+//   usage: visibility [--scene OBJ] [--levels L0 L1] [--threads T]
+// Levels are those of the general scene; the cube runs at the level with the same n, when there is
+// one (the scene's n0 is 12 4^k).
+#include <panelrad/io/scene_file.hpp>
+#include <panelrad/operator/auto_parameters.hpp>
+#include <panelrad/operator/collocation.hpp>
+#include <panelrad/operator/fast_operator.hpp>
+#include <panelrad/operator/operator_factory.hpp>
+#include <panelrad/scene/scene.hpp>
+#include <panelrad/support/resources.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <vector>
+
+using namespace panelrad;
+
+namespace {
+
+struct Row {
+  std::string scene;
+  Visibility visibility;
+  Index n = 0;
+  double setup_s = 0, product_s = 0, bytes_per_element = 0;
+  VisibilityWork work;
+};
+
+Row measure(const std::string& name, const Scene& scene, int level, const OperatorOptions& op, Visibility visibility) {
+  const Collocation col(scene, level);
+  const Collocation unit = col.with_row_weights(Eigen::VectorXd::Ones(col.size()));
+  Stopwatch clock;
+  const std::unique_ptr<RadiosityOperator> H = make_operator(unit, op, visibility);
+  Row r{name, visibility, col.size(), clock.seconds(), 0, 0, visibility_work(*H)};
+  Eigen::VectorXd v = Eigen::VectorXd::Ones(col.size()), y;
+  std::vector<double> times;
+  for (int k = 0; k < 9; ++k) {
+    clock.restart();
+    H->apply(v, y);
+    times.push_back(clock.seconds());
+  }
+  std::sort(times.begin(), times.end());
+  r.product_s = times[4];
+  r.bytes_per_element = static_cast<double>(H->bytes()) / static_cast<double>(col.size());
+  return r;
+}
+
+void print(const Row& r) {
+  std::printf("%-22s %-10s %8d %9.2f %9.4f %9.0f %12zu %12zu %12zu %10zu\n", r.scene.c_str(), to_string(r.visibility),
+              static_cast<int>(r.n), r.setup_s, r.product_s, r.bytes_per_element, r.work.visible_pairs,
+              r.work.hidden_pairs, r.work.partial_pairs, r.work.clipped_elements);
+  std::fflush(stdout);
+}
+
+int cube_level_for(Index n) {
+  int level = 0;
+  while ((Index{12} << (2 * level)) < n) ++level;
+  return (Index{12} << (2 * level)) == n ? level : -1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string scene_path = "examples/scenes/cornell_box.obj";
+  int l0 = 2, l1 = 5;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--scene") && i + 1 < argc) {
+      scene_path = argv[++i];
+    } else if (!std::strcmp(argv[i], "--levels") && i + 2 < argc) {
+      l0 = std::atoi(argv[++i]);
+      l1 = std::atoi(argv[++i]);
+    } else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) {
+      set_threads(std::atoi(argv[++i]));
+    } else {
+      std::cerr << "usage: visibility [--scene OBJ] [--levels L0 L1] [--threads T]\n";
+      return 2;
+    }
+  }
+  try {
+    const Scene general = load_channel_scene(scene_path);
+    const Scene cube = make_paper_cube_scene();
+    std::printf("visibility cost, threads %d, scene %s (%zu triangles, %s)\n", max_threads(), scene_path.c_str(),
+                general.mesh().triangles.size(), geometry::to_string(general.shape()));
+    std::printf("%-22s %-10s %8s %9s %9s %9s %12s %12s %12s %10s\n", "scene", "V", "n", "setup s", "product s",
+                "B/elem", "visible", "hidden", "partial", "clipped");
+    for (int level = l0; level <= l1; ++level) {
+      const Index n = static_cast<Index>(general.mesh().triangles.size()) << (2 * level);
+      OperatorOptions op = choose_parameters(problem_size(general.mesh(), level), 0.05, 0.5);
+      op.method = OperatorMethod::fast;
+      std::printf("n = %d: %s\n", static_cast<int>(n), describe_parameters(op).c_str());
+      if (const int cl = cube_level_for(n); cl >= 0) {
+        print(measure("cube (convex)", cube, cl, op, Visibility::unoccluded));
+        print(measure("cube (convex)", cube, cl, op, Visibility::occluded));
+      }
+      print(measure(std::filesystem::path(scene_path).filename().string(), general, level, op, Visibility::occluded));
+    }
+    std::printf("peak memory %.0f MB\n", peak_rss_mb());
+  } catch (const std::exception& e) {
+    std::cerr << "visibility: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

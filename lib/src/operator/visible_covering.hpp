@@ -1,0 +1,116 @@
+#pragma once
+// The covering (42) of one collocation point P with the line-of-sight function V(P, Q) of (1):
+// the walk of the cluster tree U (40) of the fast product, where each (P, cluster) pair is
+// classified by the scene's occluders (geometry/occluders.hpp) before admissibility (41):
+//   hidden   -> skipped with its subtree (its integral is 0);
+//   full     -> as on a convex surface: the far field (44)-(48) when admissible, else refined,
+//               and at the elements the near field (43) of NearFieldIntegrator;
+//   partial  -> refined, the faces that meet its shaft becoming its children's candidates; at
+//               the elements the exact integral over the visible part: the closed-form
+//               point-to-polygon form factor of each convex piece.
+// With eta = 0 nothing is admissible: the walk gives every element's entry of the row, the dense
+// matrix (33) with visibility. Private to lib/src/operator.
+#include <panelrad/geometry/admissibility.hpp>
+#include <panelrad/geometry/cluster_tree.hpp>
+#include <panelrad/geometry/occluders.hpp>
+#include <panelrad/operator/near_field.hpp>
+
+#include <cstddef>
+#include <span>
+#include <vector>
+
+namespace panelrad {
+
+/// Pairs classified (over the rows walked).
+struct VisibilityCounts {
+  std::size_t visible = 0;        ///< (P, cluster) pairs classified fully visible
+  std::size_t hidden = 0;         ///< classified hidden, skipped with their subtrees
+  std::size_t partial = 0;        ///< classified partly visible (refined, or clipped at the elements)
+  std::size_t clipped = 0;        ///< elements integrated over their visible part
+  VisibilityCounts& operator+=(const VisibilityCounts& o) {
+    visible += o.visible;
+    hidden += o.hidden;
+    partial += o.partial;
+    clipped += o.clipped;
+    return *this;
+  }
+};
+
+/// (1/pi) Int over the visible pieces of G(P, Q) dS_Q: the closed-form form factor of each convex
+/// piece (fan triangles), with nQ the pieces' front normal.
+double visible_form_factor(const Vec3& P, const Vec3& nP, const geometry::VisiblePart& part, const Vec3& nQ);
+
+/// Reusable buffers of one thread's walks.
+struct VisibleCoveringScratch {
+  struct Item {
+    int level;
+    geometry::Index k;
+    std::size_t among_begin, among_end;  // candidates in `pool`
+    bool known_full;                     // an ancestor was fully visible
+  };
+  std::vector<Item> stack;
+  std::vector<geometry::Index> pool, meeting;
+  geometry::VisiblePart part;
+};
+
+/// Walks the tree for collocation point P (inner normal nP): far(level, k) for the admissible,
+/// fully visible clusters; near(element, value) for the elements reached, with value the
+/// integral (1/pi) Int_Delta G V dS_Q (rho not applied). Deterministic: a fixed depth-first order.
+template <class Far, class Near>
+void cover_visible(const geometry::ClusterTree& tree, const geometry::Occluders& occluders, const Vec3& P,
+                   const Vec3& nP, double eta, const NearFieldIntegrator& integrate_near, Far&& far, Near&& near,
+                   VisibilityCounts& counts, VisibleCoveringScratch& s) {
+  using geometry::Cluster;
+  using geometry::Index;
+  using geometry::ShaftClass;
+  const int L = tree.finest_level();
+  s.stack.clear();
+  s.pool.clear();
+  for (Index root = tree.num_roots() - 1; root >= 0; --root) s.stack.push_back({0, root, 0, 0, false});
+  while (!s.stack.empty()) {
+    const VisibleCoveringScratch::Item it = s.stack.back();
+    s.stack.pop_back();
+    const Cluster& c = tree.cluster(it.level, it.k);
+    ShaftClass cls = ShaftClass::full;
+    if (!it.known_full) {
+      if (it.level == 0) {
+        occluders.candidates(P, nP, c.vertex, c.normal, s.meeting);
+        const std::size_t begin = s.pool.size();
+        s.pool.insert(s.pool.end(), s.meeting.begin(), s.meeting.end());
+        cls = occluders.classify(P, nP, c.vertex, c.normal,
+                                 std::span<const Index>(s.pool.data() + begin, s.pool.size() - begin), s.meeting,
+                                 it.level == L ? &s.part : nullptr);
+      } else {
+        cls = occluders.classify(P, nP, c.vertex, c.normal,
+                                 std::span<const Index>(s.pool.data() + it.among_begin, it.among_end - it.among_begin),
+                                 s.meeting, it.level == L ? &s.part : nullptr);
+      }
+      if (cls == ShaftClass::full) ++counts.visible;
+      else if (cls == ShaftClass::hidden) ++counts.hidden;
+      else ++counts.partial;
+    }
+    if (cls == ShaftClass::hidden) continue;
+    if (cls == ShaftClass::full) {
+      if (eta > 0 && geometry::is_admissible(P, c.centre, c.radius, eta)) {
+        far(it.level, it.k);
+      } else if (it.level == L) {
+        near(it.k, integrate_near(P, nP, c));
+      } else {
+        for (Index child = 3; child >= 0; --child) s.stack.push_back({it.level + 1, 4 * it.k + child, 0, 0, true});
+      }
+      continue;
+    }
+    // Partly visible.
+    if (it.level == L) {
+      ++counts.clipped;
+      near(it.k, visible_form_factor(P, nP, s.part, c.normal));
+      continue;
+    }
+    const std::size_t begin = s.pool.size();
+    s.pool.insert(s.pool.end(), s.meeting.begin(), s.meeting.end());
+    const std::size_t end = s.pool.size();
+    for (Index child = 3; child >= 0; --child) s.stack.push_back({it.level + 1, 4 * it.k + child, begin, end, false});
+  }
+}
+
+}  // namespace panelrad
