@@ -22,6 +22,7 @@ namespace pg = panelrad::geometry;
 namespace {
 
 const std::string kScenes = std::string(PANELRAD_SOURCE_DIR) + "/examples/scenes/";
+const std::string kMeshes = std::string(PANELRAD_SOURCE_DIR) + "/examples/meshes/";
 
 #define EXPECT_CONTAINS(haystack, needle) \
   EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << "message: " << (haystack)
@@ -449,14 +450,48 @@ TEST(SceneValidation, LoadSceneMesh) {
   const pg::TriangleMesh cube = pg::load_scene_mesh("builtin:cube", shape, &notes);
   EXPECT_EQ(shape, pg::SceneShape::convex);
   EXPECT_EQ(cube.triangles, pg::load_closed_convex("builtin:cube").triangles);
-  // The Cornell box file is one closed convex surface: the convex path, as load_closed_convex.
+  // A convex file: the convex path, as load_closed_convex, notes included.
   std::vector<std::string> scene_notes, convex_notes;
-  const pg::TriangleMesh box = pg::load_scene_mesh(kScenes + "cornell_box.obj", shape, &scene_notes);
-  const pg::TriangleMesh same = pg::load_closed_convex(kScenes + "cornell_box.obj", &convex_notes);
+  const pg::TriangleMesh box = pg::load_scene_mesh(kMeshes + "cube.off", shape, &scene_notes);
+  const pg::TriangleMesh same = pg::load_closed_convex(kMeshes + "cube.off", &convex_notes);
   EXPECT_EQ(shape, pg::SceneShape::convex);
   EXPECT_EQ(box.vertices, same.vertices);
   EXPECT_EQ(box.triangles, same.triangles);
   EXPECT_EQ(scene_notes, convex_notes);
+  // The measured Cornell box (file comments): open at the front, blocks without bottom on the
+  // uncut floor; floor front up (+y), the light (face 7) front down.
+  notes.clear();
+  const pg::TriangleMesh cornell = pg::load_scene_mesh(kScenes + "cornell_box.obj", shape, &notes);
+  EXPECT_EQ(shape, pg::SceneShape::general);
+  ASSERT_EQ(cornell.triangles.size(), 48u);
+  ASSERT_FALSE(notes.empty());
+  EXPECT_CONTAINS(notes.back(), "cornell_box.obj: piece");
+  for (std::size_t t = 0; t < cornell.triangles.size(); ++t) {
+    // Floor (y = 0) and light (y = 548.8) are horizontal: their unit fronts are (0, +-1, 0) up to
+    // rounding of the normalization, far inside 0.99.
+    if (cornell.facet_of_triangle[t] == 0) {
+      EXPECT_GT(front_normal(cornell, t).y(), 0.99) << "floor " << t;
+    }
+    if (cornell.facet_of_triangle[t] == 7) {
+      EXPECT_LT(front_normal(cornell, t).y(), -0.99) << "light " << t;
+    }
+  }
+  for (const std::string mesh : {"l_block.off", "open_box.off"}) {
+    pg::load_scene_mesh(kMeshes + mesh, shape);
+    EXPECT_EQ(shape, pg::SceneShape::general) << mesh;
+  }
+  // Two crossing squares: refused, naming both faces and a point of x = 0.5, z = 0, y in [0.2, 0.8].
+  try {
+    pg::load_scene_mesh(std::string(PANELRAD_SOURCE_DIR) + "/tests/data/meshes/crossing_faces.off", shape);
+    ADD_FAILURE() << "crossing faces accepted";
+  } catch (const pg::MeshError& e) {
+    const std::string msg = e.what();
+    EXPECT_CONTAINS(msg, "crossing_faces.off: invalid scene: crossing: input faces 0 and 1 cross at (");
+    const pg::Vec3 x = crossing_point(msg);
+    EXPECT_EQ(x.x(), 0.5);
+    EXPECT_EQ(x.z(), 0.0);
+    EXPECT_TRUE(x.y() >= 0.2 && x.y() <= 0.8) << msg;
+  }
   try {
     pg::load_scene_mesh("builtin:nothing", shape);
     ADD_FAILURE() << "unknown built-in accepted";
