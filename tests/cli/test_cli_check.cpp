@@ -55,13 +55,22 @@ TEST(CliCheck, RoundedDodecahedronNotesTheHull) {
   EXPECT_CONTAINS(r.output, "input faces: 12\n");
 }
 
-TEST(CliCheck, InvalidMeshesExitOne) {
+// A non-convex closed body and an open surface are general scenes (their visibility is computed);
+// faces that cross are refused, naming both and a point of their common segment.
+TEST(CliCheck, GeneralScenesAreValidAndCrossingFacesAreNot) {
   const CliRun l = run("check " + kMeshes + "l_block.off");
-  EXPECT_EQ(l.status, 1) << l.output;
-  EXPECT_CONTAINS(l.output, "invalid: convex: vertex 4 (1, 2, 0)");
+  EXPECT_EQ(l.status, 0) << l.output;
+  EXPECT_CONTAINS(l.output, "valid: general scene (1 piece, 1 closed): the visibility V(P,Q) is computed\n");
+  EXPECT_CONTAINS(l.output, "convex: vertex 4 (1, 2, 0)");  // why the convex path does not apply
   const CliRun open = run("check " + kMeshes + "open_box.off");
-  EXPECT_EQ(open.status, 1) << open.output;
-  EXPECT_CONTAINS(open.output, "invalid: closed: ");
+  EXPECT_EQ(open.status, 0) << open.output;
+  EXPECT_CONTAINS(open.output, "valid: general scene (1 piece, 0 closed)");
+  const CliRun cross = run("check " + std::string(PANELRAD_SOURCE_DIR) + "/tests/data/meshes/crossing_faces.off");
+  EXPECT_EQ(cross.status, 1) << cross.output;
+  EXPECT_CONTAINS(cross.output, "invalid: crossing: input faces 0 and 1 cross at (0.5, ");
+}
+
+TEST(CliCheck, InvalidMeshesExitOne) {
   const CliRun missing = run("check " + kMeshes + "no_such_mesh.off");
   EXPECT_EQ(missing.status, 1) << missing.output;
   EXPECT_CONTAINS(missing.output, "no_such_mesh.off: cannot open: no such file");

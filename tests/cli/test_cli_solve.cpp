@@ -113,6 +113,31 @@ TEST_F(CliSolve, ProgressOnStderrQuietSilencesIt) {
   EXPECT_FALSE(fs::exists(path("p.png")));
 }
 
+// The measured Cornell box (open front, two blocks): a general scene, its visibility computed and
+// counted in the summary; light escapes through the open front, so the balance reports what leaves
+// (between 0 and 1: the box keeps some light and loses some). A convex scene says it needs none.
+TEST_F(CliSolve, CornellBoxIsAGeneralSceneWithVisibility) {
+  const CliRun r = run("solve " + kScenes + "cornell_box.obj --levels 1 --formats csv,png --out " + path("cb"),
+                       "2>/dev/null");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_CONTAINS(r.output, "n = 192 (level 1)");
+  EXPECT_CONTAINS(r.output, "visibility: V computed (general scene): pairs ");
+  EXPECT_CONTAINS(r.output, "energy balance: the scene is open, so emitted = absorbed + escaped; escaped fraction: R 0.");
+  EXPECT_TRUE(fs::exists(path("cb.png")));
+  const CliRun convex = run("solve " + kScenes + "convex_box.obj --levels 0 --formats csv --out " + path("cx"),
+                            "2>/dev/null");
+  ASSERT_EQ(convex.status, 0) << convex.output;
+  EXPECT_CONTAINS(convex.output, "visibility: V = 1 (the scene is proven convex): no visibility work\n");
+  const CliRun forced = run("solve " + kScenes + "convex_box.obj --levels 0 --formats csv --visibility occluded --out " +
+                                path("cx"),
+                            "2>/dev/null");
+  ASSERT_EQ(forced.status, 0) << forced.output;
+  EXPECT_CONTAINS(forced.output, "visibility: V computed (convex scene): pairs ");
+  EXPECT_EQ(run("solve " + kScenes + "convex_box.obj --visibility none").status, 2);
+  EXPECT_EQ(run("solve " + kScenes + "convex_box.obj --view 0,0,0").status, 2);
+  EXPECT_EQ(run("solve " + kScenes + "convex_box.obj --view 1,x,0").status, 2);
+}
+
 // Kd -> rho, Ke -> E per channel through usemtl: the red wall reflects red (paper (1) per channel).
 TEST_F(CliSolve, CornellBoxChannelsFollowTheMaterials) {
   const CliRun r = run("solve " + kScenes + "convex_box.obj --max-elements 600 --formats csv --out " + path("box"),
@@ -155,19 +180,13 @@ TEST_F(CliSolve, EnergyMismatchShrinksWithLevels) {
 }
 
 TEST_F(CliSolve, InvalidScenesAreRefusedNamingFileAndPlace) {
-  // Non-convex (the L-shaped block) with a valid sidecar.
-  fs::copy_file(kMeshes + "l_block.off", path("l_block.off"));
-  write("l_block.json", R"({"default": {"rho": 0.5, "E": 1}})");
-  CliRun r = run("solve " + path("l_block.off") + " --out " + path("x"));
+  // Faces that cross (two squares through each other) with a valid sidecar.
+  fs::copy_file(std::string(PANELRAD_SOURCE_DIR) + "/tests/data/meshes/crossing_faces.off", path("crossing.off"));
+  write("crossing.json", R"({"default": {"rho": 0.5, "E": 1}})");
+  CliRun r = run("solve " + path("crossing.off") + " --out " + path("x"));
   EXPECT_EQ(r.status, 1) << r.output;
-  EXPECT_CONTAINS(r.output, "l_block.off");
-  EXPECT_CONTAINS(r.output, "convex");
-  // Open (a box without lid).
-  fs::copy_file(kMeshes + "open_box.off", path("open_box.off"));
-  write("open_box.json", R"({"default": {"rho": 0.5, "E": 1}})");
-  r = run("solve " + path("open_box.off") + " --out " + path("x"));
-  EXPECT_EQ(r.status, 1) << r.output;
-  EXPECT_CONTAINS(r.output, "closed");
+  EXPECT_CONTAINS(r.output, "crossing.off");
+  EXPECT_CONTAINS(r.output, "crossing: input faces 0 and 1 cross at (0.5, ");
   // rho >= 1, rho < 0 and NaN in the MTL: named with the MTL file and line.
   const std::vector<std::string> mats = {"a", "a", "a", "a", "a", "bad"};
   write_cube_obj("cube.mtl", mats);

@@ -227,26 +227,32 @@ TEST_F(SceneFile, ShippedPrismLampLoads) {
 
 // ---- mesh errors ------------------------------------------------------------------------------
 
-TEST_F(SceneFile, NonConvexMeshIsRejected) {
+// A non-convex closed body and an open surface load as general scenes; faces that cross are
+// refused, naming the file, both faces and a point.
+TEST_F(SceneFile, NonConvexAndOpenMeshesAreGeneralScenes) {
   std::ifstream in(kMeshes + "l_block.off");
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   write("l_block.json", R"({"default": {"rho": 0.5, "E": 1}})");
-  const std::string msg = error_of(write("l_block.off", text));
-  EXPECT_CONTAINS(msg, "l_block.off");
-  EXPECT_CONTAINS(msg, "convex");
-  EXPECT_CONTAINS(msg, "face ");
+  const Scene l = load_channel_scene(write("l_block.off", text));
+  EXPECT_EQ(l.shape(), geometry::SceneShape::general);
+  EXPECT_TRUE(l.closed());
+  // The cube without its top face.
+  std::string open_text = "mtllib cube.mtl\nusemtl white\n" + kCubeVertices;
+  for (int f = 0; f < 6; ++f)
+    if (f != 1) open_text += std::string(kCubeFaces[f]) + "\n";
+  write("cube.mtl", kGoodMtl);
+  const Scene open = load_channel_scene(write("open.obj", open_text));
+  EXPECT_EQ(open.shape(), geometry::SceneShape::general);
+  EXPECT_FALSE(open.closed());
 }
 
-TEST_F(SceneFile, OpenMeshIsRejected) {
-  // The cube without its top face.
-  std::string text = "mtllib cube.mtl\nusemtl white\n" + kCubeVertices;
-  for (int f = 0; f < 6; ++f)
-    if (f != 1) text += std::string(kCubeFaces[f]) + "\n";
-  write("cube.mtl", kGoodMtl);
-  const std::string msg = error_of(write("open.obj", text));
-  EXPECT_CONTAINS(msg, "open.obj");
-  EXPECT_CONTAINS(msg, "closed");
-  EXPECT_CONTAINS(msg, "face ");
+TEST_F(SceneFile, CrossingFacesAreRejected) {
+  std::ifstream in(std::string(PANELRAD_SOURCE_DIR) + "/tests/data/meshes/crossing_faces.off");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  write("crossing.json", R"({"default": {"rho": 0.5, "E": 1}})");
+  const std::string msg = error_of(write("crossing.off", text));
+  EXPECT_CONTAINS(msg, "crossing.off");
+  EXPECT_CONTAINS(msg, "crossing: input faces 0 and 1 cross at");
 }
 
 TEST_F(SceneFile, MeshSyntaxErrorNamesFileAndLine) {
