@@ -73,6 +73,11 @@ class Occluders {
   /// The occluders whose bounding box meets the bounding box of the shaft conv(P, tau), and that
   /// have a point strictly in front of P's plane and strictly in front of tau's plane: a superset of
   /// those that meet the shaft. `out` is replaced, ascending (deterministic). By the AABB tree.
+  /// Also left out (the margin as in the rounding policy): faces on the outer side of one of the
+  /// three planes through P and tau's edges, and faces whose plane passes through P (edge-on).
+  /// Empty when tau's class is hidden by the planes alone (P on or behind tau's plane, tau on or
+  /// behind P's plane). Scenes of a few hundred faces are scanned face by face instead (faster for
+  /// them, same result).
   void candidates(const Vec3& P, const Vec3& nP, const std::array<Vec3, 3>& tau, const Vec3& nQ,
                   std::vector<Index>& out) const;
 

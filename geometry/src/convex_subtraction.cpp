@@ -1,0 +1,89 @@
+// The visible part of tau in the line-of-sight function V of (1) is tau minus the union of the
+// shadows; each shadow is convex, so a convex piece A minus a convex shadow S with edges e_1..e_m is
+// the disjoint union of the convex pieces A cap H_1 cap ... cap H_{j-1} cap (outside of e_j's line)
+// for j = 1..m (H_j the inner half-plane of e_j), and A cap S is what remains after the last edge.
+#include "occluders_internal.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace panelrad::geometry::occluder_detail {
+
+namespace {
+
+void emit(const Vec2* p, int n, double min_area, Pieces& out) {
+  if (n < 3 || !(polygon_area(p, n) > min_area)) return;
+  out.pts.insert(out.pts.end(), p, p + n);
+  out.end.push_back(static_cast<std::uint32_t>(out.pts.size()));
+}
+
+}  // namespace
+
+void subtract_convex(const Pieces& in, const Shadow& shadow, double tol, double min_area, Pieces& out) {
+  out.clear();
+  thread_local std::vector<Vec2> cur, inner, outer;
+  thread_local std::vector<double> dist;
+  Vec2 slo = shadow.p[0], shi = shadow.p[0];
+  for (int j = 1; j < shadow.n; ++j) {
+    slo = slo.cwiseMin(shadow.p[j]);
+    shi = shi.cwiseMax(shadow.p[j]);
+  }
+  std::uint32_t begin = 0;
+  for (const std::uint32_t end : in.end) {
+    const Vec2* piece = in.pts.data() + begin;
+    const int np = static_cast<int>(end - begin);
+    begin = end;
+    Vec2 lo = piece[0], hi = piece[0];
+    for (int i = 1; i < np; ++i) {
+      lo = lo.cwiseMin(piece[i]);
+      hi = hi.cwiseMax(piece[i]);
+    }
+    if ((hi.array() <= slo.array() + tol).any() || (lo.array() >= shi.array() - tol).any()) {
+      emit(piece, np, min_area, out);  // boxes apart: the shadow misses the piece
+      continue;
+    }
+    cur.assign(piece, piece + np);
+    for (int j = 0; j < shadow.n; ++j) {
+      const Vec2& a = shadow.p[j];
+      const Vec2 d = shadow.p[(j + 1) % shadow.n] - a;
+      const double len = d.norm();
+      if (!(len > tol)) continue;  // a degenerate edge bounds nothing
+      const Vec2 left(-d.y() / len, d.x() / len);  // the inner side of a counter-clockwise polygon
+      const int n = static_cast<int>(cur.size());
+      dist.resize(cur.size());
+      double dmin = 0, dmax = 0;
+      for (int i = 0; i < n; ++i) {
+        dist[i] = (cur[i] - a).dot(left);
+        dmin = i == 0 ? dist[i] : std::min(dmin, dist[i]);
+        dmax = i == 0 ? dist[i] : std::max(dmax, dist[i]);
+      }
+      if (dmax <= tol) {  // outside this edge's line: the shadow misses what is left
+        emit(cur.data(), n, min_area, out);
+        break;
+      }
+      if (dmin >= -tol) continue;  // inside this edge's line: on to the next edge
+      // Split along the line; corners within tol of it belong to both sides (no slivers).
+      inner.clear();
+      outer.clear();
+      for (int i = 0; i < n; ++i) {
+        const int k = (i + 1) % n;
+        const double di = dist[i], dk = dist[k];
+        const int si = di > tol ? 1 : (di < -tol ? -1 : 0);
+        const int sk = dk > tol ? 1 : (dk < -tol ? -1 : 0);
+        if (si >= 0) inner.push_back(cur[i]);
+        if (si <= 0) outer.push_back(cur[i]);
+        if (si * sk < 0) {
+          const Vec2 x = cur[i] + (di / (di - dk)) * (cur[k] - cur[i]);
+          inner.push_back(x);
+          outer.push_back(x);
+        }
+      }
+      emit(outer.data(), static_cast<int>(outer.size()), min_area, out);
+      cur.swap(inner);
+      if (cur.size() < 3) break;
+    }
+    // What is inside every edge line is covered by the shadow: dropped.
+  }
+}
+
+}  // namespace panelrad::geometry::occluder_detail

@@ -1,0 +1,90 @@
+#pragma once
+// The pieces of the line-of-sight function V(P, Q) of (1) (occluders.hpp): the shaft conv(P, tau)
+// as five half-spaces, the cheap rejection of a face against it, the shadow a face casts on tau
+// from P (the face clipped to the shaft, projected centrally from P onto tau's plane), and the
+// subtraction of convex shadows from convex pieces of tau's plane. Plain double arithmetic with the
+// margins of the rounding policy in occluders.hpp; no CGAL here.
+#include <panelrad/geometry/occluders.hpp>
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace panelrad::geometry::occluder_detail {
+
+using Vec2 = Eigen::Vector2d;
+
+/// An occluder, with what the shaft tests need precomputed.
+struct FaceData {
+  std::array<Vec3, 3> v;           ///< the corners
+  Vec3 lo, hi;                     ///< bounding box
+  Vec3 n;                          ///< unit normal of the plane (either orientation: faces occlude from both sides)
+  std::array<Vec3, 3> edge_in;     ///< unit in-plane normals of the edges (v[i], v[i+1]), pointing into the face
+};
+
+FaceData make_face(const std::array<Vec3, 3>& v);
+
+/// The shaft conv(P, tau) cut by the front half-space of P's plane. Every plane is given by a unit
+/// normal pointing into the shaft, so that a signed distance > 0 means inside.
+struct Shaft {
+  Vec3 P;
+  Vec3 nP;                         ///< unit normal of P's plane
+  std::array<Vec3, 3> t;           ///< tau's corners, counter-clockwise about nQ
+  Vec3 nQ;                         ///< unit geometric normal of tau, on the side of the given nQ
+  std::array<Vec3, 3> side_n;      ///< unit inward normals of the planes through P and (t[i], t[i+1])
+  double height = 0;               ///< distance of P from tau's plane (> margin)
+  std::array<double, 3> tP{};      ///< signed distances of tau's corners from P's plane
+  bool straddles = false;          ///< tau crosses P's plane: its part behind is cut away
+  Vec3 lo, hi;                     ///< bounding box of P and tau
+  double margin = 0;               ///< kShadowMargin * scene diameter (distances)
+  double area_margin = 0;          ///< kShadowMargin * area(tau)
+  double area = 0;                 ///< area of tau
+  Vec3 u, w;                       ///< orthonormal frame of tau's plane at t[0], (u, w, nQ) right-handed
+};
+
+/// Sets up the shaft; false when nothing of tau is seen whatever the occluders (P on or behind
+/// tau's plane, tau on or behind P's plane, both by the margin).
+bool make_shaft(const Vec3& P, const Vec3& nP, const std::array<Vec3, 3>& tau, const Vec3& nQ, double margin,
+                Shaft& s);
+
+/// False when the face cannot cast a shadow of positive area on tau: its box misses the shaft's
+/// box, it lies on the outer side of one of the shaft's planes (tau's plane, P's plane, the three
+/// planes through P and tau's edges) up to the margin, or its plane passes through P (edge-on).
+bool may_meet(const FaceData& f, const Shaft& s);
+
+/// A convex polygon of tau's plane in the frame (u, w) at t[0], counter-clockwise. A face clipped
+/// by the shaft's 5 planes has at most 3 + 5 corners.
+struct Shadow {
+  std::array<Vec2, 8> p;
+  int n = 0;
+  double area = 0;
+};
+
+/// The shadow of the face on tau from P: the face clipped to the shaft, projected from P onto
+/// tau's plane. False when its area is at most s.area_margin (no shadow).
+bool cast_shadow(const FaceData& f, const Shaft& s, Shadow& out);
+
+/// Convex pieces of a plane, flat: piece k is pts[end[k-1], end[k]) (end[-1] = 0), counter-clockwise.
+struct Pieces {
+  std::vector<Vec2> pts;
+  std::vector<std::uint32_t> end;
+  void clear() {
+    pts.clear();
+    end.clear();
+  }
+};
+
+/// tau in its frame, cut to the front of P's plane when it straddles it (at most 4 corners).
+void front_part_of_tau(const Shaft& s, Pieces& out);
+
+/// out = in minus the convex shadow, by successive splits along the shadow's edge lines: the part of
+/// a piece outside an edge's line is a piece of the difference, the part inside goes on to the next
+/// edge, and what is inside every edge is covered. Corners within `tol` of a line count as on it
+/// (no sliver pieces); pieces of area at most `min_area` are dropped.
+void subtract_convex(const Pieces& in, const Shadow& shadow, double tol, double min_area, Pieces& out);
+
+double polygon_area(const Vec2* p, int n);
+
+}  // namespace panelrad::geometry::occluder_detail
