@@ -11,10 +11,12 @@
 #include <panelrad/io/text_output.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -28,16 +30,19 @@ const char* kSolveUsage =
     "usage: panelrad solve SCENE [--levels L | --max-elements N] [--out PREFIX] [--materials JSON]\n"
     "                      [--formats csv,ply,vtk,png] [--method auto|dense|fast] [--eta E] [--degree M]\n"
     "                      [--near exact|quadrature] [--mu K] [--solver auto|neumann|gmres] [--tol T|auto]\n"
-    "                      [--visibility auto|occluded] [--threads T] [--quiet]\n"
+    "                      [--visibility auto|occluded] [--view X,Y,Z] [--up X,Y,Z] [--threads T] [--quiet]\n"
     "  SCENE: an OBJ whose MTL gives Kd (reflectivity rho) and Ke (emission E) per face through usemtl,\n"
     "  or an OFF with a JSON sidecar (SCENE with extension .json, or --materials) giving rho and E per\n"
-    "  facet. Any set of planar polygons: closed bodies (a room is seen from inside, the bodies in it\n"
-    "  from outside) and open surfaces (front side counter-clockwise). The line of sight V(P,Q) is\n"
-    "  computed unless the scene is proven convex (--visibility occluded: always). Every colour channel\n"
-    "  is solved with one operator. --levels L refines L times (n = 4^L n0); --max-elements N (default 20000) takes the\n"
-    "  largest level with n <= N. Writes PREFIX.csv (per-element radiosity), PREFIX.ply (per-face\n"
-    "  colours), PREFIX.vtk (ParaView) and PREFIX.png (a picture of the inside); PREFIX defaults to\n"
-    "  the scene's name with '_radiosity' in the current directory. Progress goes to stderr\n"
+    "  facet. Any set of planar polygons that do not cross: closed bodies (a room is seen from inside,\n"
+    "  the bodies in it from outside) and open surfaces (front side counter-clockwise). The line of\n"
+    "  sight V(P,Q) is computed unless the scene is proven convex (--visibility occluded: always).\n"
+    "  Every colour channel is solved with one operator. --levels L refines L times (n = 4^L n0);\n"
+    "  --max-elements N (default 20000) takes the largest level with n <= N. Writes PREFIX.csv\n"
+    "  (per-element radiosity), PREFIX.ply (per-face colours), PREFIX.vtk (ParaView) and PREFIX.png\n"
+    "  (a cut-away picture seen from --view, the direction from the scene towards the viewer;\n"
+    "  default: the brightest diagonal; --up: the scene's upward direction, default 0,0,1); PREFIX\n"
+    "  defaults to the scene's name with '_radiosity' in\n"
+    "  the current directory. Progress goes to stderr\n"
     "  (--quiet: none); a summary with the energy balance to stdout.\n";
 
 std::string default_prefix(const std::string& scene) {
@@ -77,7 +82,32 @@ struct SolveCommandLine {
   bool quiet = false;
   int threads = 0;
   std::set<std::string> wanted;  // from formats
+  std::optional<geometry::Vec3> view;  // --view: the PNG's direction towards the viewer
+  geometry::Vec3 up = geometry::Vec3::UnitZ();  // --up: the PNG's upward direction
 };
+
+/// --view X,Y,Z: three finite numbers, not all 0; what is wrong, or "".
+std::string view_problem(const std::string& text, geometry::Vec3* out) {
+  geometry::Vec3 d;
+  std::size_t begin = 0;
+  for (int k = 0; k < 3; ++k) {
+    const std::size_t end = k < 2 ? text.find(',', begin) : text.size();
+    if (end == std::string::npos) return "needs three numbers X,Y,Z, got '" + text + "'";
+    const std::string part = text.substr(begin, end - begin);
+    std::size_t used = 0;
+    try {
+      d[k] = std::stod(part, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (part.empty() || used != part.size() || !std::isfinite(d[k]))
+      return "'" + part + "' in '" + text + "' is not a finite number";
+    begin = end + 1;
+  }
+  if (d.squaredNorm() == 0) return "the direction '" + text + "' is zero";
+  if (out) *out = d;
+  return "";
+}
 
 void add_solve_options(CLI::App& app, SolveCommandLine& line) {
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);  // repeated: the last counts
@@ -113,6 +143,16 @@ void add_solve_options(CLI::App& app, SolveCommandLine& line) {
       ->type_name("auto|occluded")
       ->check(one_of({"auto", "occluded"}));
   app.add_option("--threads", line.threads)->type_name("T")->transform(thread_count());
+  app.add_option_function<std::string>("--view", [&line](const std::string& v) {
+       geometry::Vec3 d;
+       (void)view_problem(v, &d);
+       line.view = d;
+     })
+      ->type_name("X,Y,Z")
+      ->check([](const std::string& v) { return view_problem(v, nullptr); });
+  app.add_option_function<std::string>("--up", [&line](const std::string& v) { (void)view_problem(v, &line.up); })
+      ->type_name("X,Y,Z")
+      ->check([](const std::string& v) { return view_problem(v, nullptr); });
   app.add_flag("--quiet", line.quiet);
 }
 
@@ -154,7 +194,8 @@ void check_outputs(const Scene& scene, const std::string& scene_path, const std:
 
 /// All outputs are written to temporaries first and replace the previous ones only when every
 /// one was written: a failure (or SIGINT/SIGTERM) leaves the previous set untouched.
-void write_outputs(const SceneSolution& s, const std::vector<std::string>& outputs) {
+void write_outputs(const SceneSolution& s, const std::vector<std::string>& outputs,
+                   const std::optional<geometry::Vec3>& view_direction, const geometry::Vec3& up) {
   OutputSet set;
   for (const std::string& path : outputs) {
     const std::string format = path.substr(path.size() - 3);
@@ -163,7 +204,8 @@ void write_outputs(const SceneSolution& s, const std::vector<std::string>& outpu
     if (format == "vtk") set.add(path, radiosity_vtk(s.field));
     if (format == "png") {
       RenderOptions view;
-      view.view_direction = brightest_view_direction(s.field);  // look towards the light
+      view.view_direction = view_direction ? *view_direction : brightest_view_direction(s.field);  // towards the light
+      view.up = up;
       set.add(path, radiosity_png(s.field, view));
     }
   }
@@ -230,7 +272,7 @@ int run_solve(const CLI::App& app, const SolveCommandLine& command_line) {
   check_outputs(scene, command_line.scene_path, outputs);
   const SceneSolution s = solve_scene(scene, o);
   require_converged(s);  // a channel out of iterations: exit 1 with the SolverError's message, no outputs
-  write_outputs(s, outputs);
+  write_outputs(s, outputs, command_line.view, command_line.up);
 
   print_summary(scene, command_line.scene_path, s);
   for (const std::string& w : s.warnings) std::fprintf(stderr, "panelrad solve: warning: %s\n", w.c_str());

@@ -234,7 +234,7 @@ TEST_F(SceneFile, NonConvexAndOpenMeshesAreGeneralScenes) {
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   write("l_block.json", R"({"default": {"rho": 0.5, "E": 1}})");
   const Scene l = load_channel_scene(write("l_block.off", text));
-  EXPECT_EQ(l.shape(), geometry::SceneShape::general);
+  EXPECT_EQ(l.shape(), panelrad::geometry::SceneShape::general);
   EXPECT_TRUE(l.closed());
   // The cube without its top face.
   std::string open_text = "mtllib cube.mtl\nusemtl white\n" + kCubeVertices;
@@ -242,7 +242,7 @@ TEST_F(SceneFile, NonConvexAndOpenMeshesAreGeneralScenes) {
     if (f != 1) open_text += std::string(kCubeFaces[f]) + "\n";
   write("cube.mtl", kGoodMtl);
   const Scene open = load_channel_scene(write("open.obj", open_text));
-  EXPECT_EQ(open.shape(), geometry::SceneShape::general);
+  EXPECT_EQ(open.shape(), panelrad::geometry::SceneShape::general);
   EXPECT_FALSE(open.closed());
 }
 

@@ -93,6 +93,7 @@ TEST(OccludedDense, RowsSumToRhoInClosedEnclosures) {
       EXPECT_GT(work.clipped_elements, 0u) << name;
       double worst = 0;
       Index worst_row = -1;
+      ASSERT_TRUE(dense.matrix().allFinite()) << name << " level " << level;
       for (Index i = 0; i < col.size(); ++i) {
         const double d = std::abs(dense.matrix().row(i).sum() - col.reflectivity()[i]);
         if (d > worst) {
@@ -106,17 +107,20 @@ TEST(OccludedDense, RowsSumToRhoInClosedEnclosures) {
   }
 }
 
-// V = 1 on the same scenes would count the hidden parts twice: the row sums then exceed rho by
-// the hidden factor, which shows that the test above can fail (room with a box: rows behind the
-// box see it and the wall behind it).
-TEST(OccludedDense, WithoutVisibilityTheRowSumsAreWrong) {
+// V = 1 on the same scenes: the row sums still equal rho (the unclamped kernel integrates the
+// signed solid angle, and over a closed surface a hidden face pair cancels: the box's near side
+// counts +, its far side -, the wall behind it +), but entries turn negative where a face is seen
+// from its back. So the row-sum identity alone cannot tell V apart; with the entries' sign (above)
+// it does, and the shadow test below checks V entry by entry.
+TEST(OccludedDense, WithoutVisibilityEntriesTurnNegative) {
   const Scene scene = general_scene(testing::room_with_box(), facet_rho, [](Index) { return 1.0; });
   const Collocation col(scene, 1);
   const DenseOperator unoccluded(col, NearFieldOptions{});
   double worst = 0;
   for (Index i = 0; i < col.size(); ++i)
     worst = std::max(worst, std::abs(unoccluded.matrix().row(i).sum() - col.reflectivity()[i]));
-  EXPECT_GT(worst, 1e-2);
+  EXPECT_LT(worst, 1e-10);
+  EXPECT_LT(unoccluded.matrix().minCoeff(), -1e-3);
 }
 
 // E = c (1 - rho): u = c exactly. Dense within 1e-9 (the row sums above, times the iteration's
@@ -130,6 +134,7 @@ TEST(OccludedSolve, ConstantSolutionInClosedEnclosures) {
     const std::string name = mesh.source;
     const Scene scene = general_scene(std::move(mesh), facet_rho, [&](Index f) { return c * (1 - facet_rho(f)); });
     for (const OperatorMethod method : {OperatorMethod::dense, OperatorMethod::fast}) {
+      SCOPED_TRACE(name + ", " + to_string(method));
       RadiositySolverOptions o;
       o.level = 2;
       o.method = method;
@@ -137,6 +142,9 @@ TEST(OccludedSolve, ConstantSolutionInClosedEnclosures) {
       o.solver.tolerance = 1e-13;
       const RadiositySolver solver(scene, o);
       EXPECT_EQ(solver.info().visibility, Visibility::occluded);
+      Eigen::VectorXd K1;
+      solver.op().apply(Eigen::VectorXd::Ones(solver.n()), K1);
+      ASSERT_TRUE(K1.allFinite()) << "H 1 is not finite";
       const ChannelSolve r = solver.solve(0);
       ASSERT_TRUE(r.converged()) << r.message;
       const double err = (r.u.array() - c).abs().maxCoeff() / c;
@@ -174,7 +182,7 @@ TEST(OccludedSolve, ShadowOfABlockerMatchesTheClosedForm) {
       const ChannelSolve r = solver.solve(0);
       ASSERT_TRUE(r.converged()) << r.message;
       const Collocation& col = solver.collocation();
-      double worst = 0, lit_min = 1, lit_max = 0;
+      double worst = 0, deepest = 1;  // deepest: the smallest fraction of the emitter's factor left
       int floor_points = 0;
       for (Index i = 0; i < col.size(); ++i) {
         if (col.facet(i) != 2) continue;
@@ -182,11 +190,14 @@ TEST(OccludedSolve, ShadowOfABlockerMatchesTheClosedForm) {
         const Vec3& P = col.collocation_point(i);
         const double truth = rho_f * testing::shadow_scene_visible_factor(P.x(), P.y());
         worst = std::max(worst, std::abs(r.u[i] - truth));
-        lit_min = std::min(lit_min, truth);
-        lit_max = std::max(lit_max, truth);
+        const double unshadowed =
+            rho_f * testing::parallel_rectangle_factor(P.x(), P.y(), testing::shadow_scene_emitter(), 1.0);
+        deepest = std::min(deepest, truth / unshadowed);
       }
       ASSERT_GT(floor_points, 0);
-      EXPECT_LT(lit_min, 0.5 * lit_max) << "the shadow must be deep somewhere on the floor";
+      // Some floor point is well in the shadow (at level 3 one is near the centre, where the
+      // blocker hides the whole emitter).
+      EXPECT_LT(deepest, level == 3 ? 0.25 : 0.9) << "level " << level;
       const double tol = method == OperatorMethod::dense ? 1e-12 : 2 * solver.self_check()->relative_error * rho_f + 1e-12;
       EXPECT_LT(worst, tol) << to_string(method) << " level " << level;
     }

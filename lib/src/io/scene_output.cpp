@@ -364,6 +364,8 @@ void check_options(const RenderOptions& o) {
                                 std::to_string(kMaxSide));
   if (!o.view_direction.allFinite() || !(o.view_direction.norm() > 0.0))
     throw std::invalid_argument("write_radiosity_png: view_direction must be finite and non-zero");
+  if (!o.up.allFinite() || !(o.up.norm() > 0.0))
+    throw std::invalid_argument("write_radiosity_png: up must be finite and non-zero");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -375,9 +377,13 @@ struct OrthoCamera {
   Vec3 d, r, u;
 };
 
-OrthoCamera camera_along(const Vec3& view_direction) {
+OrthoCamera camera_along(const Vec3& view_direction, const Vec3& up) {
   const Vec3 d = view_direction.normalized();
-  const Vec3 up0 = std::abs(d.z()) > 1.0 - 1e-9 ? Vec3::UnitY() : Vec3::UnitZ();
+  const Vec3 w = up.normalized();
+  // Along `up` itself the screen's up is the next axis after up's largest component.
+  int k = 0;
+  w.cwiseAbs().maxCoeff(&k);
+  const Vec3 up0 = std::abs(d.dot(w)) > 1.0 - 1e-9 ? Vec3::Unit((k + 2) % 3) : w;
   const Vec3 r = up0.cross(d).normalized();
   const Vec3 u = d.cross(r);
   return OrthoCamera{d, r, u};
@@ -640,7 +646,7 @@ std::string radiosity_png(const ElementField& field, const RenderOptions& option
   check_options(options);
   const std::vector<Rgb> colour = colours_of_valid(field);
   const bool scalar = !is_rgb(field);
-  const OrthoCamera camera = camera_along(options.view_direction);
+  const OrthoCamera camera = camera_along(options.view_direction, options.up);
 
   // Scalar scenes keep the right eighth of the picture for the colour bar.
   const int W = options.width, H = options.height;

@@ -10,8 +10,13 @@ double visible_form_factor(const Vec3& P, const Vec3& nP, const geometry::Visibl
   for (const std::uint32_t end : part.piece_end) {
     // A convex piece (p_0 .. p_m-1) is the fan of triangles (p_0, p_k, p_k+1); the form factor is
     // additive over them, each by the contour formula of quadrature::form_factor.
-    for (std::uint32_t k = begin + 1; k + 1 < end; ++k)
-      sum += quadrature::form_factor(P, nP, part.points[begin], part.points[k], part.points[k + 1], nQ);
+    // A fan triangle of zero area (repeated or collinear corners of a clipped piece) adds nothing
+    // and is skipped: the contour formula needs edges of positive length.
+    for (std::uint32_t k = begin + 1; k + 1 < end; ++k) {
+      const Vec3 &a = part.points[begin], &b = part.points[k], &c = part.points[k + 1];
+      if ((b - a).cross(c - a).squaredNorm() == 0) continue;
+      sum += quadrature::form_factor(P, nP, a, b, c, nQ);
+    }
     begin = end;
   }
   return sum;

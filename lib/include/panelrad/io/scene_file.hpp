@@ -27,8 +27,10 @@
 // 1e100]; else an error naming the file, the line, the facet (input face index) or the material.
 // All files are read by the bounded reader (geometry/text_file.hpp): regular files only, at most
 // TextReadOptions::max_bytes (default 1 GiB), no NUL byte; a UTF-8 byte-order mark is accepted.
-// The mesh is read with geometry::read_mesh and validated with geometry::validate_closed_convex
-// (closed, convex, non-degenerate): an invalid mesh is a SceneFileError with the validator's reason.
+// The mesh is read with geometry::read_mesh and validated with geometry::validate_scene (a closed
+// convex surface, or any set of planar polygons that do not cross, each piece consistently
+// oriented; the Scene's shape says which): an invalid mesh is a SceneFileError with the
+// validator's reason.
 #include <panelrad/geometry/mesh.hpp>
 #include <panelrad/scene/scene.hpp>
 #include <panelrad/support/error.hpp>

@@ -42,6 +42,9 @@ struct RenderOptions {
   int height = 720;
   /// Direction from the scene's centre towards the viewer (need not be unit).
   geometry::Vec3 view_direction = geometry::Vec3(-1.0, -1.7, 1.2);
+  /// The scene's direction shown upwards on the screen (need not be unit, nor orthogonal to
+  /// view_direction): z for the built-in scenes, y for the Cornell box's data.
+  geometry::Vec3 up = geometry::Vec3::UnitZ();
 };
 
 /// Colour of each element as shown in the picture and the PLY: RGB scenes (3 channels named R, G,
@@ -56,9 +59,10 @@ std::vector<std::array<unsigned char, 3>> element_colours(const ElementField& fi
 /// deterministic. For a scene lit from its ceiling this looks up into the light.
 geometry::Vec3 brightest_view_direction(const ElementField& field);
 
-/// PNG picture of the inside of the (convex, closed) scene: a cut-away view from outside along
-/// view_direction showing the faces whose inner side looks at the viewer (the far walls), each
-/// element flat-coloured by element_colours(), with a colour bar for scalar scenes.
+/// PNG picture of the scene: an orthographic cut-away view from outside along view_direction
+/// showing the faces whose front side (inner normal) looks at the viewer (a room's far walls, the
+/// near sides of the bodies in it), nearest first (a depth buffer), each element flat-coloured by
+/// element_colours(), with a colour bar for scalar scenes.
 void write_radiosity_png(const std::string& path, const ElementField& field, const RenderOptions& options = {});
 std::string radiosity_png(const ElementField& field, const RenderOptions& options = {});
 

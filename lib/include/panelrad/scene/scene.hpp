@@ -1,5 +1,7 @@
 #pragma once
-// A polyhedral scene: a validated closed convex surface with, in each of C channels (C = 1 for a
+// A polyhedral scene: a validated set of planar polygons (geometry::validate_scene: a closed convex
+// surface, the paper's setting, or a general scene whose visibility V(P, Q) is computed) with, in
+// each of C channels (C = 1 for a
 // scalar problem; "R", "G", "B" for a colour one), the reflectivity rho and the emission E of the
 // radiosity equation (1), each given per facet or as a function of the point; or (scalar scenes)
 // E manufactured from a known solution u by E = u - K u (the paper's test method, section 3).
