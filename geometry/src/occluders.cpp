@@ -241,6 +241,7 @@ void Occluders::candidates(const Vec3& P, const Vec3& nP, const std::array<Vec3,
     out.clear();  // nothing of tau is seen: no face meets the (empty) shaft
     return;
   }
+  complete_shaft(s);
   impl_->collect(s, out);
 }
 
@@ -251,6 +252,8 @@ ShaftClass Occluders::classify(const Vec3& P, const Vec3& nP, const std::array<V
   if (part) part->clear();
   Shaft s;
   if (!make_shaft(P, nP, tau, nQ, impl_->margin, s)) return ShaftClass::hidden;
+  if (among.empty() && !s.straddles) return ShaftClass::full;  // the four plane tests decide
+  complete_shaft(s);
   thread_local std::vector<Shadow> shadows;
   shadows.clear();
   impl_->shadows_of(s, among, meeting, shadows);
@@ -267,6 +270,7 @@ void Occluders::visible_part(const Vec3& P, const Vec3& nP, const std::array<Vec
   out.clear();
   Shaft s;
   if (!make_shaft(P, nP, tau, nQ, impl_->margin, s)) return;
+  complete_shaft(s);
   thread_local std::vector<Index> meeting;
   thread_local std::vector<Shadow> shadows;
   meeting.clear();

@@ -44,10 +44,14 @@ struct Shaft {
   Vec3 u, w;                       ///< orthonormal frame of tau's plane at t[0], (u, w, nQ) right-handed
 };
 
-/// Sets up the shaft; false when nothing of tau is seen whatever the occluders (P on or behind
+/// Sets up tau's and P's planes of the shaft; false when nothing of tau is seen whatever the occluders (P on or behind
 /// tau's plane, tau on or behind P's plane, both by the margin).
 bool make_shaft(const Vec3& P, const Vec3& nP, const std::array<Vec3, 3>& tau, const Vec3& nQ, double margin,
                 Shaft& s);
+
+/// The rest of a shaft that make_shaft accepted: the side planes, the box and tau's frame (the
+/// plane tests alone decide the class when there are no occluders to test).
+void complete_shaft(Shaft& s);
 
 /// False when the face cannot cast a shadow of positive area on tau: its box misses the shaft's
 /// box, it lies on the outer side of one of the shaft's planes (tau's plane, P's plane, the three

@@ -53,6 +53,11 @@ bool make_shaft(const Vec3& P, const Vec3& nP, const std::array<Vec3, 3>& tau, c
   if (!(hi > margin)) return false;  // tau on or behind P's plane: cos theta_P <= 0
   // A corner within the margin of P's plane counts as on it: cutting there removes no area.
   s.straddles = lo < -margin;
+  return true;
+}
+
+void complete_shaft(Shaft& s) {
+  const Vec3& P = s.P;
   for (int i = 0; i < 3; ++i) {
     const Vec3& a = s.t[i];
     const Vec3& b = s.t[(i + 1) % 3];
@@ -65,7 +70,6 @@ bool make_shaft(const Vec3& P, const Vec3& nP, const std::array<Vec3, 3>& tau, c
   s.hi = P.cwiseMax(s.t[0]).cwiseMax(s.t[1]).cwiseMax(s.t[2]);
   s.u = (s.t[1] - s.t[0]).normalized();
   s.w = s.nQ.cross(s.u);
-  return true;
 }
 
 namespace {

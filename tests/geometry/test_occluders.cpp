@@ -4,6 +4,7 @@
 // faces that do not occlude, the consistency of the shaft classes with the visible parts and across
 // the midpoint subdivision, and the ray test on simple cases.
 #include <panelrad/geometry/occluders.hpp>
+#include <panelrad/geometry/parallel_for.hpp>
 
 #include <CGAL/Boolean_set_operations_2.h>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
@@ -521,6 +522,59 @@ TEST(Occluders, TreeCandidatesOfALargeSceneContainEveryMeetingFace) {
       EXPECT_GT(box.max().z(), 0);
     }
   }
+}
+
+TEST(Occluders, ConcurrentQueriesGiveTheSerialResults) {
+  // The queries are const with per-thread scratch: run them from OpenMP threads, one index per
+  // chunk so that the threads interleave, and compare with a serial run bit for bit.
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u01(0, 1);
+  std::vector<Tri> tris = horizontal_rectangle(0, 1, 0, 1, 0);
+  for (int i = 0; i < 700; ++i) {
+    const Vec3 centre(1.4 * u01(rng) - 0.2, 1.4 * u01(rng) - 0.2, 0.1 + 0.8 * u01(rng));
+    Tri t;
+    for (Vec3& v : t) v = centre + 0.08 * Vec3(2 * u01(rng) - 1, 2 * u01(rng) - 1, 2 * u01(rng) - 1);
+    tris.push_back(t);
+  }
+  const Occluders occ(mesh_of(tris));
+  struct Query {
+    Vec3 P;
+    Tri tau;
+  };
+  std::vector<Query> queries;
+  for (int q = 0; q < 400; ++q) {
+    const Tri& face = tris[static_cast<std::size_t>(q % 2)];
+    const double s = 0.8 * u01(rng), t = 0.8 * u01(rng) * (1 - s);
+    const Vec3 corner = face[0] + s * (face[1] - face[0]) + t * (face[2] - face[0]);
+    const Vec3 e1 = 0.2 * (face[1] - face[0]), e2 = 0.2 * (face[2] - face[0]);
+    queries.push_back({Vec3(u01(rng), u01(rng), 1), Tri{corner, corner + e1, corner + e2}});
+  }
+  struct Result {
+    ShaftClass cls = ShaftClass::hidden;
+    std::vector<Index> meeting;
+    VisiblePart part;
+    bool ray = false;
+  };
+  const Vec3 down(0, 0, -1), up(0, 0, 1);
+  const auto run = [&](const Query& q, Result& r) {
+    std::vector<Index> among;
+    occ.candidates(q.P, down, q.tau, up, among);
+    r.cls = occ.classify(q.P, down, q.tau, up, among, r.meeting, &r.part);
+    r.ray = occ.visible(q.P, (q.tau[0] + q.tau[1] + q.tau[2]) / 3);
+  };
+  std::vector<Result> serial(queries.size()), parallel(queries.size());
+  for (std::size_t k = 0; k < queries.size(); ++k) run(queries[k], serial[k]);
+  parallel_for(queries.size(), [&](std::size_t k) { run(queries[k], parallel[k]); }, 1);
+  int partial = 0;
+  for (std::size_t k = 0; k < queries.size(); ++k) {
+    EXPECT_EQ(parallel[k].cls, serial[k].cls) << k;
+    EXPECT_EQ(parallel[k].meeting, serial[k].meeting) << k;
+    EXPECT_EQ(parallel[k].part.points, serial[k].part.points) << k;
+    EXPECT_EQ(parallel[k].part.area, serial[k].part.area) << k;
+    EXPECT_EQ(parallel[k].ray, serial[k].ray) << k;
+    partial += serial[k].cls == ShaftClass::partial ? 1 : 0;
+  }
+  EXPECT_GT(partial, 50);
 }
 
 // ---- 5. The ray test ----

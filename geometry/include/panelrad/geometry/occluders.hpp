@@ -17,9 +17,15 @@
 // Rounding policy. The decisions are made in double precision with the margin
 // kShadowMargin * diameter on distances to planes and kShadowMargin * area(tau) on shadow areas:
 // a face that enters the shaft by less than the margin is ignored, and a visible area below the
-// margin is empty. The error this makes in a form factor is of the order of the margin (a sliver
-// of relative width 1e-12 seen from P), far below the discretization error; exact predicates are
-// not needed for a bounded quantity of that size.
+// margin is empty. In detail: a corner of tau within the margin of P's plane counts as on it; a
+// face whose corners all lie within the margin outside one of the shaft's planes, or whose plane
+// passes within the margin of P, casts no shadow; a shadow of area at most the area margin is none;
+// in the subtraction of the shadows a corner within the margin of a shadow's edge line counts as on
+// it (no sliver pieces), and pieces below a thousandth of the area margin are dropped; a ray is
+// blocked only by a crossing farther than the margin from the face's edges, with P and Q farther
+// than the margin from its plane. The error this makes in a form factor is of the order of the
+// margin (a sliver of relative width 1e-12 seen from P), far below the discretization error; exact
+// predicates are not needed for a bounded quantity of that size.
 #include <panelrad/geometry/mesh.hpp>
 
 #include <array>
