@@ -7,10 +7,11 @@
 //   - a general scene (default: the real Cornell box; with n0 = 48 its level L has the n of the
 //     cube's level L + 1, n = 48 4^L).
 // Each row: n, the operator's setup time (covering (42) with the classification, near field (43),
-// far coefficients), the time of one product K_n v (median of 9), the bytes held per element, and
-// the pairs classified. The parameters are the same for every row of a level: choose_parameters for
-// the cube's size (the automatic choice at 5% of the discretization error, rho_max 0.5).
-//   usage: visibility [--scene OBJ] [--levels L0 L1] [--threads T]
+// far coefficients), the time of one product K_n v (the median of --products K, default 9), the
+// bytes held per element, and the pairs classified. The parameters are the same for every row of
+// a level: choose_parameters for the general scene's size (the automatic choice at 5% of the
+// discretization error, with rho_max 0.5; no self-check, so no tightening).
+//   usage: visibility [--scene OBJ] [--levels L0 L1] [--threads T] [--products K] [--no-cube]
 // Levels are those of the general scene; the cube runs at the level with the same n, when there is
 // one (the scene's n0 is 12 4^k).
 #include <panelrad/io/scene_file.hpp>
@@ -42,6 +43,9 @@ struct Row {
   VisibilityWork work;
 };
 
+int g_products = 9;  // products timed per operator (the median is reported)
+bool g_cube = true;  // also the cube rows
+
 Row measure(const std::string& name, const Scene& scene, int level, const OperatorOptions& op, Visibility visibility) {
   const Collocation col(scene, level);
   const Collocation unit = col.with_row_weights(Eigen::VectorXd::Ones(col.size()));
@@ -50,13 +54,13 @@ Row measure(const std::string& name, const Scene& scene, int level, const Operat
   Row r{name, visibility, col.size(), clock.seconds(), 0, 0, visibility_work(*H)};
   Eigen::VectorXd v = Eigen::VectorXd::Ones(col.size()), y;
   std::vector<double> times;
-  for (int k = 0; k < 9; ++k) {
+  for (int k = 0; k < g_products; ++k) {
     clock.restart();
     H->apply(v, y);
     times.push_back(clock.seconds());
   }
   std::sort(times.begin(), times.end());
-  r.product_s = times[4];
+  r.product_s = times[times.size() / 2];
   r.bytes_per_element = static_cast<double>(H->bytes()) / static_cast<double>(col.size());
   return r;
 }
@@ -87,8 +91,12 @@ int main(int argc, char** argv) {
       l1 = std::atoi(argv[++i]);
     } else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) {
       set_threads(std::atoi(argv[++i]));
+    } else if (!std::strcmp(argv[i], "--products") && i + 1 < argc) {
+      g_products = std::max(1, std::atoi(argv[++i]));
+    } else if (!std::strcmp(argv[i], "--no-cube")) {
+      g_cube = false;
     } else {
-      std::cerr << "usage: visibility [--scene OBJ] [--levels L0 L1] [--threads T]\n";
+      std::cerr << "usage: visibility [--scene OBJ] [--levels L0 L1] [--threads T] [--products K] [--no-cube]\n";
       return 2;
     }
   }
@@ -104,7 +112,7 @@ int main(int argc, char** argv) {
       OperatorOptions op = choose_parameters(problem_size(general.mesh(), level), 0.05, 0.5);
       op.method = OperatorMethod::fast;
       std::printf("n = %d: %s\n", static_cast<int>(n), describe_parameters(op).c_str());
-      if (const int cl = cube_level_for(n); cl >= 0) {
+      if (const int cl = cube_level_for(n); g_cube && cl >= 0) {
         print(measure("cube (convex)", cube, cl, op, Visibility::unoccluded));
         print(measure("cube (convex)", cube, cl, op, Visibility::occluded));
       }
