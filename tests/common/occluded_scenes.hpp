@@ -113,15 +113,21 @@ inline TriangleMesh reversed(TriangleMesh mesh) {
   return mesh;
 }
 
+/// The closed room [0, 1]^3 (facets 0-5, seen from inside) with closed axis boxes [lo, hi] inside
+/// it, seen from outside (6 facets each, in the order given).
+inline TriangleMesh room_with_boxes(const std::vector<std::pair<Vec3, Vec3>>& boxes, std::string source) {
+  TriangleMesh mesh;
+  mesh.source = std::move(source);
+  add_axis_box(mesh, Vec3(0, 0, 0), Vec3(1, 1, 1), BoxFront::inside);
+  for (const auto& [lo, hi] : boxes) add_axis_box(mesh, lo, hi, BoxFront::outside);
+  return mesh;
+}
+
 /// The closed room [0, 1]^3 (facets 0-5, seen from inside) with the closed box
 /// [0.3, 0.6] x [0.35, 0.7] x [0.2, 0.55] inside it (facets 6-11, seen from outside), at distance
 /// >= 0.2 from every wall. 24 triangles.
 inline TriangleMesh room_with_box() {
-  TriangleMesh mesh;
-  mesh.source = "room_with_box";
-  add_axis_box(mesh, Vec3(0, 0, 0), Vec3(1, 1, 1), BoxFront::inside);
-  add_axis_box(mesh, Vec3(0.3, 0.35, 0.2), Vec3(0.6, 0.7, 0.55), BoxFront::outside);
-  return mesh;
+  return room_with_boxes({{Vec3(0.3, 0.35, 0.2), Vec3(0.6, 0.7, 0.55)}}, "room_with_box");
 }
 
 /// The closed L-shaped room [0, 2] x [0, 1] x [0, 1]  U  [0, 1] x [1, 2] x [0, 1], seen from
@@ -163,13 +169,10 @@ inline TriangleMesh l_shaped_room() {
 /// (facets 6-11), [0.5, 0.8] x [0.2, 0.4] x [0.3, 0.6] (12-17), [0.3, 0.6] x [0.6, 0.9] x
 /// [0.55, 0.85] (18-23). 48 triangles.
 inline TriangleMesh room_with_floating_boxes() {
-  TriangleMesh mesh;
-  mesh.source = "room_with_floating_boxes";
-  add_axis_box(mesh, Vec3(0, 0, 0), Vec3(1, 1, 1), BoxFront::inside);
-  add_axis_box(mesh, Vec3(0.1, 0.1, 0.1), Vec3(0.3, 0.3, 0.4), BoxFront::outside);
-  add_axis_box(mesh, Vec3(0.5, 0.2, 0.3), Vec3(0.8, 0.4, 0.6), BoxFront::outside);
-  add_axis_box(mesh, Vec3(0.3, 0.6, 0.55), Vec3(0.6, 0.9, 0.85), BoxFront::outside);
-  return mesh;
+  return room_with_boxes({{Vec3(0.1, 0.1, 0.1), Vec3(0.3, 0.3, 0.4)},
+                          {Vec3(0.5, 0.2, 0.3), Vec3(0.8, 0.4, 0.6)},
+                          {Vec3(0.3, 0.6, 0.55), Vec3(0.6, 0.9, 0.85)}},
+                         "room_with_floating_boxes");
 }
 
 /// Three parallel open squares, centred on the z axis: facet 0 the emitter [-0.5, 0.5]^2 at z = 1

@@ -8,6 +8,8 @@
 // (solve/), and its files (io/, target panelrad::io). Link panelrad::panelrad and panelrad::io.
 #include <panelrad/geometry/builtin_scenes.hpp>
 #include <panelrad/geometry/mesh_io.hpp>
+#include <panelrad/geometry/occluders.hpp>
+#include <panelrad/geometry/scene_validation.hpp>
 #include <panelrad/geometry/validation.hpp>
 
 #include <panelrad/support/error.hpp>
