@@ -13,6 +13,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <iterator>
 #include <span>
@@ -214,7 +215,13 @@ Occluders::Occluders(const TriangleMesh& mesh) : impl_(std::make_unique<Impl>())
   used.reserve(3 * m.triangles.size());
   for (const auto& v : m.triangles) used.insert(used.end(), v.begin(), v.end());
   m.diameter = bounding_box_diameter(used);
-  m.margin = kShadowMargin * m.diameter;
+  // The relative margin, and never less than the rounding of the coordinates themselves: a
+  // distance to a plane computed from points at |x| carries an error of a few eps |x| (a
+  // collocation point on its own face may come out behind it), so 64 eps max|x| is added, which
+  // matters only for scenes far from the origin relative to their size.
+  double max_abs = 0;
+  for (const Vec3& v : used) max_abs = std::max(max_abs, v.cwiseAbs().maxCoeff());
+  m.margin = kShadowMargin * m.diameter + 64 * std::numeric_limits<double>::epsilon() * max_abs;
   m.tree.insert(m.cgal_triangles.cbegin(), m.cgal_triangles.cend());
   m.tree.build();  // now, not lazily in a const query: the queries run concurrently
 }

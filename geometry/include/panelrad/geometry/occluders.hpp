@@ -15,7 +15,9 @@
 // (tau's own face, its coplanar neighbours) cast none: touching is not occluding.
 //
 // Rounding policy. The decisions are made in double precision with the margin
-// kShadowMargin * diameter on distances to planes and kShadowMargin * area(tau) on shadow areas:
+// kShadowMargin * diameter + 64 eps max|x| on distances to planes (the second term, the rounding of
+// coordinates at |x|, matters only for a scene far from the origin relative to its size: a point
+// on a face must never come out behind it) and kShadowMargin * area(tau) on shadow areas:
 // a face that enters the shaft by less than the margin is ignored, and a visible area below the
 // margin is empty. In detail: a corner of tau within the margin of P's plane counts as on it; a
 // face whose corners all lie within the margin outside one of the shaft's planes, or whose plane
