@@ -111,6 +111,23 @@ OperatorOptions tighten_parameters(const OperatorOptions& options) {
   return o;
 }
 
+std::vector<OperatorOptions> stricter_settings(const OperatorOptions& options) {
+  std::vector<OperatorOptions> out;
+  if (options.method != OperatorMethod::fast) return out;
+  std::vector<double> etas = {options.eta};
+  for (double eta : kEtaLadder)
+    if (eta < options.eta - 1e-12 && etas.size() < 3) etas.push_back(eta);
+  for (const double eta : etas)
+    for (int degree = std::max(1, options.degree - 2); degree <= std::min(12, options.degree + 2); ++degree) {
+      if (eta == options.eta && degree <= options.degree) continue;
+      OperatorOptions o = options;
+      o.eta = eta;
+      o.degree = degree;
+      out.push_back(o);
+    }
+  return out;
+}
+
 std::string describe_parameters(const OperatorOptions& o) {
   std::ostringstream os;
   os << to_string(o.method) << ", " << to_string(o.near.rule) << " near field";

@@ -82,7 +82,12 @@ FastOperator::FastOperator(const Collocation& collocation, const FastOptions& op
   n_ = tree_->num_elements();
   std::tie(row_begin_, row_end_) = resolve_rows(options_.rows, n_);
   terms_ = num_taylor_terms(options_.degree);
-  refuse_beyond_memory(collocation);
+  if (options_.probe_samples > 0) {
+    probed_.assign(static_cast<std::size_t>(row_end_ - row_begin_), 0);
+    for (const Index i : self_check_rows(options_.probe_samples)) probed_[static_cast<std::size_t>(i - row_begin_)] = 1;
+  } else {
+    refuse_beyond_memory(collocation);  // a probe holds a few rows beside the arrays of (48)
+  }
   Stopwatch clock;
   report_stage("fast operator, n = " + std::to_string(n_) + rows_note() + ": cluster frames and element moments");
   setup_cluster_frames();
@@ -217,6 +222,7 @@ std::vector<FastOperator::RowBlock> FastOperator::cover_rows(const Collocation& 
         ++skipped_rows;
         continue;
       }
+      if (!probed_.empty() && !probed_[static_cast<std::size_t>(i - row_begin_)]) continue;  // a probe's row not sampled
       const Vec3& P = point_[static_cast<std::size_t>(i)];
       const Vec3& nP = normal_[static_cast<std::size_t>(i)];
       std::int64_t nn = 0, nf = 0;
@@ -418,14 +424,22 @@ void FastOperator::compute_moments(const Eigen::VectorXd& v, std::vector<double>
   }
 }
 
-// Row i (held) of the fast product (43) from the cluster moments of v: near field plus far field (47).
-double FastOperator::apply_row(Index i, const Eigen::VectorXd& v, const std::vector<double>& moments,
-                               double* scratch) const {
+// Row i (held) of the fast product (43) for C vectors, from their cluster moments: near field plus
+// far field (47). Each column's sum runs over the same terms in the same order as for C = 1, so
+// that a column of a block product is bit-identical to the product of that column alone; the
+// near-field lists and far coefficients are read once for all C.
+template <int C>
+void FastOperator::apply_row_columns(Index i, const double* const* v, const double* const* moments, double* scratch,
+                                     double* out) const {
   const std::size_t T = static_cast<std::size_t>(terms_);
   const std::size_t r = static_cast<std::size_t>(i - row_begin_);
-  double sum = 0;
-  for (std::int64_t j = near_start_[r]; j < near_start_[r + 1]; ++j)
-    sum += near_val_[static_cast<std::size_t>(j)] * v[near_col_[static_cast<std::size_t>(j)]];
+  double sum[C];
+  for (int c = 0; c < C; ++c) sum[c] = 0;
+  for (std::int64_t j = near_start_[r]; j < near_start_[r + 1]; ++j) {
+    const double k = near_val_[static_cast<std::size_t>(j)];
+    const Index col = near_col_[static_cast<std::size_t>(j)];
+    for (int c = 0; c < C; ++c) sum[c] += k * v[c][col];
+  }
   for (std::int64_t j = far_start_[r]; j < far_start_[r + 1]; ++j) {
     const Index cl = far_cluster_[static_cast<std::size_t>(j)];
     const double* coef;
@@ -435,10 +449,20 @@ double FastOperator::apply_row(Index i, const Eigen::VectorXd& v, const std::vec
       far_coefficients(i, cl, scratch);
       coef = scratch;
     }
-    const double* m = &moments[static_cast<std::size_t>(cl) * T];
-    for (std::size_t t = 0; t < T; ++t) sum += coef[t] * m[t];  // (47)
+    const std::size_t offset = static_cast<std::size_t>(cl) * T;
+    for (std::size_t t = 0; t < T; ++t)
+      for (int c = 0; c < C; ++c) sum[c] += coef[t] * moments[c][offset + t];  // (47)
   }
-  return sum;
+  for (int c = 0; c < C; ++c) out[c] = sum[c];
+}
+
+double FastOperator::apply_row(Index i, const Eigen::VectorXd& v, const std::vector<double>& moments,
+                               double* scratch) const {
+  const double* vp = v.data();
+  const double* mp = moments.data();
+  double out;
+  apply_row_columns<1>(i, &vp, &mp, scratch, &out);
+  return out;
 }
 
 void FastOperator::apply(const Eigen::VectorXd& v, Eigen::VectorXd& y) const {
@@ -461,6 +485,42 @@ void FastOperator::apply_rows(const Eigen::VectorXd& v, Eigen::VectorXd& y_block
     std::vector<double> scratch(static_cast<std::size_t>(terms_));
 #pragma omp for schedule(dynamic, 256)
     for (Index r = 0; r < rows; ++r) y_block[r] = apply_row(row_begin_ + r, v, moments, scratch.data());
+  }
+}
+
+void FastOperator::apply_block(const Eigen::MatrixXd& V, Eigen::MatrixXd& Y) const {
+  if (!holds_all_rows())
+    throw std::logic_error("FastOperator::apply_block: the operator holds only rows [" + std::to_string(row_begin_) +
+                           ", " + std::to_string(row_end_) + ") of n = " + std::to_string(n_));
+  if (V.rows() != n_) throw std::invalid_argument("FastOperator::apply_block: vector size differs from n");
+  const Index columns = static_cast<Index>(V.cols());
+  Y.resize(n_, columns);
+  std::vector<std::vector<double>> moments(static_cast<std::size_t>(std::min<Index>(columns, kBlockColumns)));
+  for (Index first = 0; first < columns; first += kBlockColumns) {
+    const int C = static_cast<int>(std::min<Index>(kBlockColumns, columns - first));
+    const double* v[kBlockColumns];
+    const double* m[kBlockColumns];
+    for (int c = 0; c < C; ++c) {
+      const Eigen::VectorXd column = V.col(first + c);  // compute_moments reads a vector
+      compute_moments(column, moments[static_cast<std::size_t>(c)]);
+      v[c] = V.col(first + c).data();
+      m[c] = moments[static_cast<std::size_t>(c)].data();
+    }
+#pragma omp parallel
+    {
+      std::vector<double> scratch(static_cast<std::size_t>(terms_));
+      double out[kBlockColumns];
+#pragma omp for schedule(dynamic, 256)
+      for (Index r = 0; r < n_; ++r) {
+        switch (C) {
+          case 1: apply_row_columns<1>(r, v, m, scratch.data(), out); break;
+          case 2: apply_row_columns<2>(r, v, m, scratch.data(), out); break;
+          case 3: apply_row_columns<3>(r, v, m, scratch.data(), out); break;
+          default: apply_row_columns<4>(r, v, m, scratch.data(), out); break;
+        }
+        for (int c = 0; c < C; ++c) Y(r, first + c) = out[c];
+      }
+    }
   }
 }
 
@@ -540,12 +600,11 @@ std::vector<Index> FastOperator::self_check_rows(int samples) const {
 }
 
 // Per sampled row r and vector k (index r * V + k): (K v_k)_r and (K |v_k|)_r from the exact
-// closed-form entries (one form factor per element, O(n) per row), and the fast row.
-void FastOperator::self_check_products(const std::vector<Index>& rows,
-                                       const std::vector<std::pair<std::string, Eigen::VectorXd>>& vectors,
-                                       const std::vector<std::vector<double>>& moments, std::vector<double>& exact,
-                                       std::vector<double>& scale, std::vector<double>& fast) const {
+// closed-form entries (one form factor per element, O(n) per row).
+void FastOperator::exact_rows(FastSelfCheckReference& reference) const {
   const auto elements = tree_->elements();
+  const auto& rows = reference.rows;
+  const auto& vectors = reference.vectors;
   const std::size_t V = vectors.size(), S = rows.size();
   // v_k(j) and |v_k(j)| interleaved per element: the exact rows' inner loop reads them in order.
   std::vector<double> values(static_cast<std::size_t>(n_) * 2 * V);
@@ -554,64 +613,92 @@ void FastOperator::self_check_products(const std::vector<Index>& rows,
       values[(static_cast<std::size_t>(j) * V + k) * 2] = vectors[k].second[j];
       values[(static_cast<std::size_t>(j) * V + k) * 2 + 1] = std::abs(vectors[k].second[j]);
     }
-  exact.assign(S * V, 0.0);
-  scale.assign(S * V, 0.0);
-  fast.assign(S * V, 0.0);
+  reference.exact.assign(S * V, 0.0);
+  reference.scale.assign(S * V, 0.0);
   const geometry::Occluders* occluders = options_.occluders.get();
   const NearFieldIntegrator exact_near(NearFieldOptions{}, tree_->mesh_size());  // the closed form
 #pragma omp parallel
   {
-    std::vector<double> scratch(static_cast<std::size_t>(terms_));
     VisibleCoveringScratch covering;
 #pragma omp for schedule(dynamic, 1)
     for (std::size_t r = 0; r < S; ++r) {
       const Index i = rows[r];
       const double rho = rho_[static_cast<std::size_t>(i)];
-      double* ex = &exact[r * V];
-      double* sc = &scale[r * V];
-      if (rho != 0) {
-        const Vec3& P = point_[static_cast<std::size_t>(i)];
-        const Vec3& nP = normal_[static_cast<std::size_t>(i)];
-        const auto add = [&](Index j, double form_factor) {
-          const double kij = rho * form_factor;
-          const double* vj = &values[static_cast<std::size_t>(j) * 2 * V];
-          for (std::size_t k = 0; k < V; ++k) {
-            ex[k] += kij * vj[2 * k];
-            sc[k] += kij * vj[2 * k + 1];
-          }
-        };
-        if (occluders) {
-          // The exact row with V: every element's closed-form form factor over its visible part,
-          // by the walk with nothing admissible (eta = 0).
-          VisibilityCounts counts;
-          cover_visible(*tree_, *occluders, P, nP, 0.0, exact_near, [](int, Index) {}, add, counts, covering);
-        } else {
-          const Index fi = elements[static_cast<std::size_t>(i)].facet;
-          for (Index j = 0; j < n_; ++j) {
-            const Cluster& e = elements[static_cast<std::size_t>(j)];
-            if (e.facet == fi) continue;  // coplanar: G = 0
-            add(j, quadrature::form_factor(P, nP, e.vertex[0], e.vertex[1], e.vertex[2], e.normal));
-          }
+      double* ex = &reference.exact[r * V];
+      double* sc = &reference.scale[r * V];
+      if (rho == 0) continue;
+      const Vec3& P = point_[static_cast<std::size_t>(i)];
+      const Vec3& nP = normal_[static_cast<std::size_t>(i)];
+      const auto add = [&](Index j, double form_factor) {
+        const double kij = rho * form_factor;
+        const double* vj = &values[static_cast<std::size_t>(j) * 2 * V];
+        for (std::size_t k = 0; k < V; ++k) {
+          ex[k] += kij * vj[2 * k];
+          sc[k] += kij * vj[2 * k + 1];
+        }
+      };
+      if (occluders) {
+        // The exact row with V: every element's closed-form form factor over its visible part,
+        // by the walk with nothing admissible (eta = 0).
+        VisibilityCounts counts;
+        cover_visible(*tree_, *occluders, P, nP, 0.0, exact_near, [](int, Index) {}, add, counts, covering);
+      } else {
+        const Index fi = elements[static_cast<std::size_t>(i)].facet;
+        for (Index j = 0; j < n_; ++j) {
+          const Cluster& e = elements[static_cast<std::size_t>(j)];
+          if (e.facet == fi) continue;  // coplanar: G = 0
+          add(j, quadrature::form_factor(P, nP, e.vertex[0], e.vertex[1], e.vertex[2], e.normal));
         }
       }
-      for (std::size_t k = 0; k < V; ++k) fast[r * V + k] = apply_row(i, vectors[k].second, moments[k], scratch.data());
     }
   }
 }
 
+FastSelfCheckReference FastOperator::self_check_reference(int samples) const {
+  FastSelfCheckReference reference;
+  if (row_end_ == row_begin_) return reference;
+  Stopwatch clock;
+  reference.rows = self_check_rows(samples);
+  reference.vectors = self_check_vectors();
+  exact_rows(reference);
+  reference.seconds = clock.seconds();
+  return reference;
+}
+
+FastSelfCheck FastOperator::self_check(int samples) const {
+  if (row_end_ == row_begin_) return {};
+  return self_check(self_check_reference(samples));
+}
+
 // Exact entries of a row are cheap (one closed-form form factor per element, O(n)): compare the
 // fast rows with them for every test vector (FastSelfCheck in the header).
-FastSelfCheck FastOperator::self_check(int samples) const {
+FastSelfCheck FastOperator::self_check(const FastSelfCheckReference& reference) const {
   FastSelfCheck check;
   if (row_end_ == row_begin_) return check;
   Stopwatch clock;
-  const std::vector<Index> rows = self_check_rows(samples);
-  const auto vectors = self_check_vectors();
+  const auto& rows = reference.rows;
+  const auto& vectors = reference.vectors;
   const std::size_t V = vectors.size(), S = rows.size();
+  for (const Index i : rows)
+    if (i < row_begin_ || i >= row_end_)
+      throw std::invalid_argument("FastOperator::self_check: reference row " + std::to_string(i) +
+                                  " is not among the rows held");
+  for (const auto& v : vectors)
+    if (v.second.size() != n_) throw std::invalid_argument("FastOperator::self_check: reference vector size differs from n");
+  if (reference.exact.size() != S * V || reference.scale.size() != S * V)
+    throw std::invalid_argument("FastOperator::self_check: reference rows and vectors do not match its values");
   std::vector<std::vector<double>> moments(V);
   for (std::size_t k = 0; k < V; ++k) compute_moments(vectors[k].second, moments[k]);
-  std::vector<double> exact, scale, fast;
-  self_check_products(rows, vectors, moments, exact, scale, fast);
+  std::vector<double> fast(S * V, 0.0);
+#pragma omp parallel
+  {
+    std::vector<double> scratch(static_cast<std::size_t>(terms_));
+#pragma omp for schedule(dynamic, 1)
+    for (std::size_t r = 0; r < S; ++r)
+      for (std::size_t k = 0; k < V; ++k) fast[r * V + k] = apply_row(rows[r], vectors[k].second, moments[k], scratch.data());
+  }
+  const auto& exact = reference.exact;
+  const auto& scale = reference.scale;
   check.rows = static_cast<int>(S);
   check.sampled_rows = rows;
   for (std::size_t k = 0; k < V; ++k) {
@@ -632,7 +719,7 @@ FastSelfCheck FastOperator::self_check(int samples) const {
     check.relative_error = std::max(check.relative_error, c.relative_error);
     check.vectors.push_back(std::move(c));
   }
-  check.seconds = clock.seconds();
+  check.seconds = clock.seconds() + reference.seconds;
   return check;
 }
 

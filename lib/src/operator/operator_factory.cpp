@@ -58,10 +58,6 @@ VisibilityWork visibility_work(const RadiosityOperator& op) {
   return w;
 }
 
-namespace {
-
-/// The scene's faces as occluders: the level-0 triangles of the cluster tree (the validated,
-/// oriented input triangles; refinement adds no face).
 std::shared_ptr<const geometry::Occluders> scene_occluders(const geometry::ClusterTree& tree) {
   geometry::TriangleMesh faces;
   faces.source = "scene faces";
@@ -76,8 +72,6 @@ std::shared_ptr<const geometry::Occluders> scene_occluders(const geometry::Clust
   faces.num_facets = tree.num_facets();
   return std::make_shared<const geometry::Occluders>(faces);
 }
-
-}  // namespace
 
 std::unique_ptr<RadiosityOperator> make_operator(const Collocation& collocation, const OperatorOptions& options,
                                                  Visibility visibility, const SetupProgress& progress) {

@@ -139,6 +139,62 @@ std::unique_ptr<RadiosityOperator> RadiositySolver::make(const Collocation& rows
   });
 }
 
+// Occluded scenes: the coverings (42), refined along every shadow, are most of the setup, and a
+// smaller eta adds fewer far pairs than on a convex surface (the shadows refine anyway), so no
+// rule of thumb says which stricter setting is the cheapest. The settings are measured on probes
+// instead (FastOptions::probe_samples: an operator covering only the self-check's sampled rows,
+// whose check equals the whole operator's bit for bit) and the operator is built once: with the
+// first setting when its check passes, else with the stricter_settings whose check passes at the
+// least product work (far pairs x Taylor terms + near pairs over the probed rows); when none
+// passes, the one with the smallest check.
+void RadiositySolver::choose_by_probes(const Collocation& rows, OperatorOptions& op) {
+  FastOptions base;
+  base.near = op.near;
+  base.occluders = scene_occluders(rows.tree());
+  base.probe_samples = kSelfCheckSamples;
+  struct Trial {
+    OperatorOptions options;
+    FastSelfCheck check;
+    double work = 0;
+  };
+  std::optional<FastSelfCheckReference> reference;
+  const auto trial = [&](const OperatorOptions& o) {
+    FastOptions f = base;
+    static_cast<ClusteringParameters&>(f) = o;
+    stage_ = "probing the setting " + describe_parameters(o) + " on the self-check's rows";
+    const FastOperator probe(rows, f);
+    if (!reference) reference = probe.self_check_reference(kSelfCheckSamples);
+    Trial t{o, probe.self_check(*reference), 0};
+    const FastStatistics& stats = probe.statistics();
+    t.work = static_cast<double>(stats.far_pairs) * num_taylor_terms(o.degree) + static_cast<double>(stats.near_pairs);
+    say("probe, " + describe_parameters(o) + fmt(": self-check %.2e, product work %.3g per sampled row", t.check.relative_error,
+                                                 t.work / std::max(1, t.check.rows)));
+    return t;
+  };
+  const double threshold = info_.self_check_threshold;
+  Trial chosen = trial(op);
+  if (!(chosen.check.relative_error <= threshold)) {
+    say(fmt("self-check %.2e above %.2e: probing stricter settings", chosen.check.relative_error, threshold));
+    std::optional<Trial> best_passing;
+    Trial smallest = chosen;
+    for (const OperatorOptions& o : stricter_settings(op)) {
+      Trial t = trial(o);
+      if (t.check.relative_error <= threshold) {
+        if (!best_passing || t.work < best_passing->work) best_passing = t;
+      } else if (t.check.relative_error < smallest.check.relative_error) {
+        smallest = t;
+      }
+    }
+    const Trial& next = best_passing ? *best_passing : smallest;
+    if (!(next.options == chosen.options)) {
+      chosen = next;
+      ++info_.tightened;
+    }
+  }
+  op = chosen.options;
+  info_.self_check = std::move(chosen.check);
+}
+
 // Steps 5-6: the operator, its self-check, and (automatic parameters) the one tighten loop.
 void RadiositySolver::build_operator() {
   Stopwatch clock;
@@ -147,29 +203,36 @@ void RadiositySolver::build_operator() {
                                  : std::optional<Collocation>(collocation_->with_row_weights(Eigen::VectorXd::Ones(info_.n)));
   const Collocation& rows = unit ? *unit : *collocation_;
   OperatorOptions& op = info_.parameters;
-  op_ = make(rows, op);
-  if (const auto* fast = dynamic_cast<const FastOperator*>(op_.get())) {
-    say("fast operator: checking the product on sampled exact rows");
+  const bool tighten = options_.method == OperatorMethod::automatic || options_.tighten_on_failed_check;
+  if (op.method == OperatorMethod::fast)
     info_.self_check_threshold =
         self_check_threshold(problem_size(scene_.mesh(), info_.level), info_.conditioning_reflectivity);
-    info_.self_check = fast->self_check();
-    const bool tighten = options_.method == OperatorMethod::automatic || options_.tighten_on_failed_check;
-    while (tighten && !(info_.self_check->relative_error <= info_.self_check_threshold)) {
-      const OperatorOptions stricter = tighten_parameters(op);
-      if (stricter == op) break;  // nothing stricter
-      say(fmt("self-check %.2e above %.2e: tightening", info_.self_check->relative_error, info_.self_check_threshold));
-      op = stricter;
-      ++info_.tightened;
-      op_.reset();  // free the looser operator before building the stricter one
-      op_ = make(rows, op);
-      info_.self_check = dynamic_cast<const FastOperator&>(*op_).self_check();
+  if (op.method == OperatorMethod::fast && tighten && info_.visibility == Visibility::occluded) {
+    say("fast operator: probing the setting on the self-check's sampled rows");
+    choose_by_probes(rows, op);
+    op_ = make(rows, op);  // its self-check is the probe's (the same rows, computed alike)
+  } else {
+    op_ = make(rows, op);
+    if (const auto* fast = dynamic_cast<const FastOperator*>(op_.get())) {
+      say("fast operator: checking the product on sampled exact rows");
+      info_.self_check = fast->self_check(kSelfCheckSamples);
+      while (tighten && !(info_.self_check->relative_error <= info_.self_check_threshold)) {
+        const OperatorOptions stricter = tighten_parameters(op);
+        if (stricter == op) break;  // nothing stricter
+        say(fmt("self-check %.2e above %.2e: tightening", info_.self_check->relative_error, info_.self_check_threshold));
+        op = stricter;
+        ++info_.tightened;
+        op_.reset();  // free the looser operator before building the stricter one
+        op_ = make(rows, op);
+        info_.self_check = dynamic_cast<const FastOperator&>(*op_).self_check(kSelfCheckSamples);
+      }
     }
-    if (!(info_.self_check->relative_error <= info_.self_check_threshold))
-      info_.warnings.push_back(fmt("the fast product's measured relative error %.2e is above the accepted %.2e ",
-                                   info_.self_check->relative_error, info_.self_check_threshold) +
-                               (tighten ? "(nothing stricter to try)" : "(manual parameters, not tightened)") +
-                               "; the answer may be less accurate than the discretization");
   }
+  if (info_.self_check && !(info_.self_check->relative_error <= info_.self_check_threshold))
+    info_.warnings.push_back(fmt("the fast product's measured relative error %.2e is above the accepted %.2e ",
+                                 info_.self_check->relative_error, info_.self_check_threshold) +
+                             (tighten ? "(nothing stricter to try)" : "(manual parameters, not tightened)") +
+                             "; the answer may be less accurate than the discretization");
   info_.operator_bytes = op_->bytes();
   info_.operator_s = clock.seconds();
   say(fmt("operator ready in %.2f s: ", info_.operator_s) + describe_parameters(op) + ", " +
@@ -214,20 +277,46 @@ ChannelSolve RadiositySolver::solve(const Eigen::VectorXd& rho, const Eigen::Vec
   return solve_values(rho, E, "data");
 }
 
+SolverOptions RadiositySolver::iteration_options(const std::string& label) const {
+  SolverOptions solver = options_.solver;
+  solver.tolerance = info_.tolerance;
+  if (options_.progress)
+    solver.progress = [this, label](int products, double estimate) {
+      say(label + fmt(": product %.0f, error estimate %.2e", products, estimate));
+    };
+  return solver;
+}
+
+SolverKind RadiositySolver::solver_kind(double max_rho) const {
+  return options_.solver.kind == SolverKind::automatic ? choose_solver(max_rho) : options_.solver.kind;
+}
+
+namespace {
+
+ChannelSolve channel_solve(SolveResult&& r) {
+  ChannelSolve out;
+  out.status = r.status;
+  out.message = std::move(r.message);
+  out.u = std::move(r.u);
+  out.solver = r.choice.empty() ? r.solver : r.choice;
+  out.iterations = r.iterations;
+  out.error_estimate = r.error_estimate;
+  out.residual = r.residual;
+  out.convergence_ratio = r.convergence_ratio;
+  out.seconds = r.seconds;
+  return out;
+}
+
+}  // namespace
+
 ChannelSolve RadiositySolver::solve_values(const Eigen::VectorXd& rho, const Eigen::VectorXd& E,
                                            const std::string& label) const {
   if (options_.fold_reflectivity && !(rho.array() == collocation_->reflectivity().array()).all())
     throw std::invalid_argument("solve: the operator holds K_n with channel 0's rho (fold_reflectivity); "
                                 "another rho needs a solver without fold_reflectivity");
   const double max_rho = rho.maxCoeff();
-  SolverOptions solver = options_.solver;
-  solver.tolerance = info_.tolerance;
-  if (options_.progress)
-    solver.progress = [&](int products, double estimate) {
-      say(label + fmt(": product %.0f, error estimate %.2e", products, estimate));
-    };
-  const SolverKind kind = solver.kind == SolverKind::automatic ? choose_solver(max_rho) : solver.kind;
-  stage_ = "solving " + label + " (32) with " + to_string(kind);
+  const SolverOptions solver = iteration_options(label);
+  stage_ = "solving " + label + " (32) with " + to_string(solver_kind(max_rho));
   stage_bytes_ = info_.memory.solver;
   SolveResult r;
   try {
@@ -240,16 +329,75 @@ ChannelSolve RadiositySolver::solve_values(const Eigen::VectorXd& rho, const Eig
   } catch (const std::bad_alloc&) {
     throw ResourceError(out_of_memory_message(stage_, static_cast<double>(info_.n), stage_bytes_));
   }
-  ChannelSolve out;
-  out.status = r.status;
-  out.message = std::move(r.message);
-  out.u = std::move(r.u);
-  out.solver = r.choice.empty() ? r.solver : r.choice;
-  out.iterations = r.iterations;
-  out.error_estimate = r.error_estimate;
-  out.residual = r.residual;
-  out.convergence_ratio = r.convergence_ratio;
-  out.seconds = r.seconds;
+  return channel_solve(std::move(r));
+}
+
+std::vector<ChannelSolve> RadiositySolver::solve_channels(const std::vector<std::size_t>& channels) const {
+  if (options_.fold_reflectivity)
+    throw std::logic_error("solve_channels: the operator holds K_n = diag(rho) H (fold_reflectivity), not H");
+  std::vector<ChannelSolve> out(channels.size());
+  // The Neumann channels: (I - diag(rho_c) H) u_c = E_c, each its own iteration.
+  struct Iterating {
+    std::size_t slot;
+    Eigen::VectorXd rho;
+    double max_rho;
+    NeumannIteration iteration;
+    Stopwatch clock;
+  };
+  std::vector<Iterating> group;
+  for (std::size_t s = 0; s < channels.size(); ++s) {
+    const Collocation::ChannelValues v = channel_values(channels[s]);
+    const std::string label = "channel " + scene_.channels()[channels[s]];
+    const double max_rho = v.rho.maxCoeff();
+    if (solver_kind(max_rho) != SolverKind::neumann) {
+      out[s] = solve_values(v.rho, v.E, label);
+      out[s].irradiance = irradiance(out[s].u);
+      continue;
+    }
+    if (!v.E.allFinite()) throw std::invalid_argument("solver: right-hand side has NaN or Inf entries");
+    group.push_back({s, v.rho, max_rho, NeumannIteration(v.E, iteration_options(label)), Stopwatch()});
+  }
+  stage_ = "solving " + std::to_string(group.size()) + " channels (32) together with neumann";
+  stage_bytes_ = info_.memory.solver;
+  try {
+    Eigen::MatrixXd V, Y;
+    std::vector<std::size_t> active;
+    const auto finish = [&](Iterating& g) {
+      SolveResult r = g.iteration.release();
+      r.seconds = g.clock.seconds();
+      if (options_.solver.kind == SolverKind::automatic) r.choice = solver_choice(g.max_rho);
+      Eigen::VectorXd irradiance = std::move(out[g.slot].irradiance);
+      out[g.slot] = channel_solve(std::move(r));
+      out[g.slot].irradiance = std::move(irradiance);
+    };
+    for (Iterating& g : group)
+      if (g.iteration.finished()) {  // E = 0: u = 0 without a product
+        finish(g);
+        out[g.slot].irradiance = Eigen::VectorXd::Zero(info_.n);
+      }
+    for (;;) {
+      active.clear();
+      for (std::size_t j = 0; j < group.size(); ++j)
+        if (!group[j].iteration.finished()) active.push_back(j);
+      if (active.empty()) break;
+      V.resize(info_.n, static_cast<Eigen::Index>(active.size()));
+      for (std::size_t a = 0; a < active.size(); ++a) V.col(static_cast<Eigen::Index>(a)) = group[active[a]].iteration.next();
+      op_->apply_block(V, Y);  // H v of every channel still iterating, in one pass
+      for (std::size_t a = 0; a < active.size(); ++a) {
+        Iterating& g = group[active[a]];
+        const bool last = g.iteration.awaiting_residual();
+        const Eigen::VectorXd Hv = Y.col(static_cast<Eigen::Index>(a));
+        const Eigen::VectorXd Kv = Hv.cwiseProduct(g.rho);  // (K v)_i = rho_i (H v)_i, (33)
+        g.iteration.take(Kv);
+        if (last) {
+          out[g.slot].irradiance = Hv;  // H u of the final u: the light arriving
+          finish(g);
+        }
+      }
+    }
+  } catch (const std::bad_alloc&) {
+    throw ResourceError(out_of_memory_message(stage_, static_cast<double>(info_.n), stage_bytes_));
+  }
   return out;
 }
 

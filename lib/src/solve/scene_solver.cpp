@@ -88,26 +88,29 @@ void energy_balance(const ElementField& field, std::size_t c, ChannelSolution& c
   ch.escaped = ch.emitted != 0 ? (ch.emitted - ch.absorbed) / ch.emitted : 0;
 }
 
-// (I - diag(rho_c) H) u_c = E_c, (32), and the energy balance.
-ChannelSolution solve_channel(const RadiositySolver& solver, const SceneSolution& out, std::size_t c,
-                              const std::function<void(const std::string&)>& say) {
+// What channel c needs before any solve: the solution of an identical earlier channel, or u = 0
+// when it emits nothing; false when it is to be solved.
+bool channel_without_solve(const SceneSolution& out, std::size_t c, ChannelSolution& ch,
+                           const std::function<void(const std::string&)>& say) {
   const ElementField& field = out.field;
-  ChannelSolution ch;
   ch.name = field.channels[c];
   if (const int same = identical_earlier_channel(field, c); same >= 0) {
-    ch = out.channels[static_cast<std::size_t>(same)];
-    ch.name = field.channels[c];
-    ch.shared_with = out.channels[static_cast<std::size_t>(same)].name;
+    ch.shared_with = out.channels[static_cast<std::size_t>(same)].name;  // its solution is copied once solved
     say("channel " + ch.name + ": same rho and E as channel " + ch.shared_with + ", solution shared");
-    return ch;
+    return true;
   }
   if (field.emission[c].lpNorm<Eigen::Infinity>() == 0) {
     ch.radiosity = Eigen::VectorXd::Zero(out.n);  // nothing emitted: u = 0 exactly
     ch.irradiance = Eigen::VectorXd::Zero(out.n);
     ch.solver = "none (E = 0 in this channel: u = 0)";
-    return ch;
+    return true;
   }
-  ChannelSolve r = solver.solve(c);
+  return false;
+}
+
+// (I - diag(rho_c) H) u_c = E_c, (32), solved, and the energy balance.
+void take_solve(ChannelSolve&& r, const ElementField& field, std::size_t c, ChannelSolution& ch,
+                const std::function<void(const std::string&)>& say) {
   ch.status = r.status;
   ch.message = std::move(r.message);
   ch.radiosity = std::move(r.u);
@@ -115,10 +118,9 @@ ChannelSolution solve_channel(const RadiositySolver& solver, const SceneSolution
   ch.iterations = r.iterations;
   ch.residual = r.residual;
   ch.error_estimate = r.error_estimate;
-  ch.irradiance = solver.irradiance(ch.radiosity);  // the light arriving: the product without rho
+  ch.irradiance = std::move(r.irradiance);  // the light arriving: the product without rho
   energy_balance(field, c, ch);
   say("channel " + ch.name + ": " + ch.solver + fmt(", %.0f products, energy mismatch %.2e", ch.iterations, ch.energy_mismatch));
-  return ch;
 }
 
 // What a channel's answer says beside its numbers.
@@ -162,9 +164,28 @@ SceneSolution solve_scene(const Scene& scene, const RadiositySolverOptions& opti
   // are not reciprocal), measured at most 0.35 h/diam on the cube, prisms and the tetrahedron at
   // levels 1-5 (tests/solve/test_scene_solver.cpp): 0.5 h/diam; a warning above 4 times that.
   out.expected_energy_mismatch = 0.5 * out.mesh_size / out.diameter;
+  // Channels that share their solution with an earlier one, or emit nothing, need no solve; the
+  // others are solved together (RadiositySolver::solve_channels: one pass over the operator per
+  // Neumann step for all of them).
+  std::vector<std::size_t> to_solve;
   for (std::size_t c = 0; c < scene.num_channels(); ++c) {
-    out.channels.push_back(solve_channel(solver, out, c, say));
-    channel_warnings(out.channels.back(), out);
+    ChannelSolution ch;
+    if (!channel_without_solve(out, c, ch, say)) to_solve.push_back(c);
+    out.channels.push_back(std::move(ch));
+  }
+  std::vector<ChannelSolve> solves = solver.solve_channels(to_solve);
+  for (std::size_t s = 0; s < to_solve.size(); ++s)
+    take_solve(std::move(solves[s]), out.field, to_solve[s], out.channels[to_solve[s]], say);
+  for (std::size_t c = 0; c < scene.num_channels(); ++c) {
+    ChannelSolution& ch = out.channels[c];
+    if (!ch.shared_with.empty()) {  // copy the solution of the channel it shares (solved above)
+      const std::string name = ch.name, shared = ch.shared_with;
+      const int same = identical_earlier_channel(out.field, c);
+      ch = out.channels[static_cast<std::size_t>(same)];
+      ch.name = name;
+      ch.shared_with = shared;
+    }
+    channel_warnings(ch, out);
   }
   out.solve_s = clock.seconds();
   for (const ChannelSolution& ch : out.channels) out.field.radiosity.push_back(ch.radiosity);

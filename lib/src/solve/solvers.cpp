@@ -118,68 +118,78 @@ const char* to_string(SolverKind kind) {
   return "?";
 }
 
+NeumannIteration::NeumannIteration(Eigen::VectorXd E, SolverOptions options)
+    : E_(std::move(E)), u_(E_), options_(std::move(options)) {  // u^(1) = E + K 0
+  r_.solver = "neumann";
+  e_norm_ = inf_norm(E_);
+  previous_norm_ = e_norm_;
+  if (e_norm_ == 0) {
+    phase_ = Phase::finished;  // u = 0 exactly, no product
+    r_.u = u_;
+  } else if (options_.max_iterations < 1) {
+    stop(SolveStatus::not_converged);
+  }
+}
+
+void NeumannIteration::stop(SolveStatus status) {
+  r_.status = status;
+  r_.convergence_ratio = ratio_;
+  if (status == SolveStatus::not_converged) {
+    std::ostringstream os;
+    os << "Neumann iteration did not reach the tolerance " << options_.tolerance << " in " << options_.max_iterations
+       << " steps (last ratio " << ratio_
+       << "; a ratio near 1 means rho close to 1, where GMRES needs far fewer products)";
+    r_.message = os.str();
+  }
+  phase_ = Phase::residual;
+}
+
+void NeumannIteration::take(const Eigen::VectorXd& Kv) {
+  if (phase_ == Phase::finished) throw std::logic_error("NeumannIteration::take: the iteration has finished");
+  if (phase_ == Phase::residual) {  // ||E - (I - K) u||_inf / ||E||_inf
+    r_.residual = inf_norm(E_ - u_ + Kv) / e_norm_;
+    r_.u = std::move(u_);
+    phase_ = Phase::finished;
+    return;
+  }
+  const int k = ++r_.iterations;
+  Eigen::VectorXd next = E_ + Kv;
+  const Eigen::VectorXd step = next - u_;  // u^(k+1) - u^(k) = K (u^(k) - u^(k-1)), (35)
+  const double step_norm = inf_norm(step);
+  u_ = std::move(next);
+  const double q = previous_norm_ > 0 ? step_norm / previous_norm_ : 0;  // estimate of (36)
+  r_.ratio_history.push_back(q);
+  ratio_ = q;
+  if (options_.progress) options_.progress(r_.iterations, q < 1 ? q / (1 - q) * step_norm : 0.0);
+  previous_norm_ = step_norm;
+  if (!u_.allFinite()) throw SolverError("Neumann iteration produced NaN/Inf at step " + std::to_string(k));
+  // Error bound from (35) with contraction q < 1: ||u_n - u^(k+1)|| <= q/(1-q) ||step||;
+  // none (+inf) while the ratio is not yet known to be below 1.
+  r_.error_estimate = std::numeric_limits<double>::infinity();
+  if (k >= 3 && q < 1) {
+    const double q_safe = std::max(q, r_.ratio_history[r_.ratio_history.size() - 2]);
+    if (q_safe < 1) {
+      r_.error_estimate = q_safe / (1 - q_safe) * step_norm;
+      if (r_.error_estimate <= options_.tolerance * inf_norm(u_)) return stop(SolveStatus::converged);
+    }
+  }
+  if (step_norm == 0) {  // exact fixed point reached
+    r_.error_estimate = 0;
+    return stop(SolveStatus::converged);
+  }
+  if (k >= options_.max_iterations) stop(SolveStatus::not_converged);
+}
+
 SolveResult solve_neumann(const RadiosityOperator& K, const Eigen::VectorXd& E, const SolverOptions& options) {
   check_sizes(K, E);
   Stopwatch clock;
-  SolveResult r;
-  r.solver = "neumann";
-  Eigen::VectorXd u = E, Ku;  // u^(1) = E + K 0
-  Eigen::VectorXd previous_step = E;
-  double previous_norm = inf_norm(E);
-  r.iterations = 0;
-  if (previous_norm == 0) {
-    r.u = u;
-    r.seconds = clock.seconds();
-    return r;
+  NeumannIteration iteration(E, options);
+  Eigen::VectorXd Kv;
+  while (!iteration.finished()) {
+    K.apply(iteration.next(), Kv);
+    iteration.take(Kv);
   }
-  double ratio = 0;
-  for (int k = 1; k <= options.max_iterations; ++k) {
-    K.apply(u, Ku);
-    ++r.iterations;
-    Eigen::VectorXd next = E + Ku;
-    const Eigen::VectorXd step = next - u;  // u^(k+1) - u^(k) = K (u^(k) - u^(k-1)), (35)
-    const double step_norm = inf_norm(step);
-    u = std::move(next);
-    const double q = previous_norm > 0 ? step_norm / previous_norm : 0;  // estimate of (36)
-    r.ratio_history.push_back(q);
-    ratio = q;
-    if (options.progress) options.progress(r.iterations, q < 1 ? q / (1 - q) * step_norm : 0.0);
-    previous_norm = step_norm;
-    if (!u.allFinite()) throw SolverError("Neumann iteration produced NaN/Inf at step " + std::to_string(k));
-    // Error bound from (35) with contraction q < 1: ||u_n - u^(k+1)|| <= q/(1-q) ||step||;
-    // none (+inf) while the ratio is not yet known to be below 1.
-    r.error_estimate = std::numeric_limits<double>::infinity();
-    if (k >= 3 && q < 1) {
-      const double q_safe = std::max(q, r.ratio_history[r.ratio_history.size() - 2]);
-      if (q_safe < 1) {
-        r.error_estimate = q_safe / (1 - q_safe) * step_norm;
-        if (r.error_estimate <= options.tolerance * inf_norm(u)) {
-          r.convergence_ratio = ratio;
-          r.u = std::move(u);
-          r.residual = relative_residual(K, E, r.u);
-          r.seconds = clock.seconds();
-          return r;
-        }
-      }
-    }
-    if (step_norm == 0) {  // exact fixed point reached
-      r.convergence_ratio = ratio;
-      r.error_estimate = 0;
-      r.u = std::move(u);
-      r.residual = relative_residual(K, E, r.u);
-      r.seconds = clock.seconds();
-      return r;
-    }
-  }
-  std::ostringstream os;
-  os << "Neumann iteration did not reach the tolerance " << options.tolerance << " in "
-     << options.max_iterations << " steps (last ratio " << ratio
-     << "; a ratio near 1 means rho close to 1, where GMRES needs far fewer products)";
-  r.status = SolveStatus::not_converged;
-  r.message = os.str();
-  r.convergence_ratio = ratio;
-  r.u = std::move(u);
-  r.residual = relative_residual(K, E, r.u);
+  SolveResult r = iteration.release();
   r.seconds = clock.seconds();
   return r;
 }
@@ -259,20 +269,24 @@ SolverKind choose_solver(double max_reflectivity) {
   return (max_reflectivity >= 0 && max_reflectivity <= 0.8) ? SolverKind::neumann : SolverKind::gmres;
 }
 
+std::string solver_choice(double max_reflectivity) {
+  std::ostringstream os;
+  if (choose_solver(max_reflectivity) == SolverKind::neumann)
+    os << "auto: Neumann, since max rho = " << max_reflectivity << " <= 0.8 bounds its ratio (36)";
+  else if (max_reflectivity >= 0)
+    os << "auto: GMRES, since max rho = " << max_reflectivity << " > 0.8 would slow Neumann (ratio up to rho)";
+  else
+    os << "auto: GMRES, since rho varies by point and its maximum is unknown";
+  return os.str();
+}
+
 SolveResult solve(const RadiosityOperator& K, const Eigen::VectorXd& E, const SolverOptions& options,
                   double max_reflectivity) {
   if (options.kind == SolverKind::automatic) {
     SolverOptions chosen = options;
     chosen.kind = choose_solver(max_reflectivity);
     SolveResult r = solve(K, E, chosen, max_reflectivity);
-    std::ostringstream os;
-    if (chosen.kind == SolverKind::neumann)
-      os << "auto: Neumann, since max rho = " << max_reflectivity << " <= 0.8 bounds its ratio (36)";
-    else if (max_reflectivity >= 0)
-      os << "auto: GMRES, since max rho = " << max_reflectivity << " > 0.8 would slow Neumann (ratio up to rho)";
-    else
-      os << "auto: GMRES, since rho varies by point and its maximum is unknown";
-    r.choice = os.str();
+    r.choice = solver_choice(max_reflectivity);
     return r;
   }
   switch (options.kind) {

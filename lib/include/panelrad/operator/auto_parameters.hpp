@@ -66,6 +66,7 @@
 #include <panelrad/operator/operator_factory.hpp>
 
 #include <string>
+#include <vector>
 
 namespace panelrad {
 
@@ -109,6 +110,15 @@ double self_check_threshold(const ProblemSize& size, double rho_max = kPaperCube
 /// method first raises M by one up to 6, then lowers eta along 0.5, 0.3, 0.2, 0.1 (keeping M).
 /// Returns `options` unchanged when nothing is stricter (eta 0.1 and M >= 6).
 OperatorOptions tighten_parameters(const OperatorOptions& options);
+
+/// The settings to probe when the fast method's self-check fails on an occluded scene, where the
+/// coverings are refined along the shadows whatever eta is, so that a smaller eta costs fewer
+/// extra far pairs than on a convex surface and a rule of thumb cannot say which setting is the
+/// cheapest: eta at options' value and the next two of 0.5, 0.3, 0.2, 0.1 below it, each with
+/// M from options.degree - 2 to options.degree + 2 (within [1, 12]), and of those only the ones
+/// stricter than options (a smaller eta, or the same eta and a larger M). In that order (eta
+/// falling, M rising); empty for dense or when nothing is stricter.
+std::vector<OperatorOptions> stricter_settings(const OperatorOptions& options);
 
 /// "dense, exact near field" / "fast, exact near field, eta 0.3, M 4": for printing (compare
 /// options with ==).

@@ -54,6 +54,11 @@ struct FastOptions : ClusteringParameters {
   /// the coverings (42) classify each (P_i, cluster) pair as fully visible, hidden or partly
   /// visible (visible_covering.hpp). Empty: V = 1 (a convex scene), no visibility work at all.
   std::shared_ptr<const geometry::Occluders> occluders;
+  /// A probe of these parameters: when > 0, only the rows that self_check(probe_samples) samples
+  /// are covered and integrated (the others are held empty, their entries of a product 0), so
+  /// that self_check(probe_samples) measures what it would measure on the whole operator, bit for
+  /// bit (each row is computed independently of the others), at the cost of those rows alone.
+  int probe_samples = 0;
 };
 
 /// What setup found and stored: the covering's counts (over the rows held).
@@ -106,6 +111,17 @@ struct SelfCheckVector {
 /// ||(K - K_f) v||_inf <= delta max_k (K|v|)_k <= delta rho_max ||v||_inf, so with v = u_f
 ///     ||u - u_f||_inf / ||u_f||_inf <= delta rho_max / (1 - rho_max),
 /// delta the check value (an estimate: sampled rows and vectors like u_f, not a proof).
+/// The exact side of the self-check: the sampled rows, the test vectors, and per row r and
+/// vector k (index r * vectors + k) the exact (K v_k)_r and (K |v_k|)_r. It depends on the
+/// collocation (rows and their weights) and the occluders only, not on eta or M: one reference
+/// serves every operator of the same rows and occluders.
+struct FastSelfCheckReference {
+  std::vector<geometry::Index> rows;
+  std::vector<std::pair<std::string, Eigen::VectorXd>> vectors;
+  std::vector<double> exact, scale;
+  double seconds = 0;
+};
+
 struct FastSelfCheck {
   int rows = 0;                              ///< rows sampled
   double relative_error = 0;                 ///< max over `vectors` (+inf when a product is not finite)
@@ -130,6 +146,12 @@ class FastOperator final : public RadiosityOperator {
   /// bit-identical to entry i of apply() on the whole operator. v has all n entries: the cluster
   /// moments (48) are integrals of v over the whole surface.
   void apply_rows(const Eigen::VectorXd& v, Eigen::VectorXd& y_block) const;
+  /// Y = K_n V (all n rows held): column c bit-identical to apply(V.col(c)), every column's sums
+  /// taken in the same order as apply's, while the stored far-field coefficients (44)-(45) and the
+  /// near-field lists are read once per row for up to kBlockColumns columns at a time.
+  void apply_block(const Eigen::MatrixXd& V, Eigen::MatrixXd& Y) const override;
+  /// Columns of V whose rows are computed together in apply_block.
+  static constexpr int kBlockColumns = 4;
   std::string name() const override { return "fast"; }
   std::size_t bytes() const override { return stats_.bytes; }
   const FastStatistics& statistics() const { return stats_; }
@@ -139,6 +161,11 @@ class FastOperator final : public RadiosityOperator {
   /// exact closed-form rows (near field and far field together), for every self_check_vectors().
   /// The rows are sampled among the rows held.
   FastSelfCheck self_check(int samples = 32) const;
+  /// The exact rows of self_check(samples), for comparing several operators of the same rows.
+  FastSelfCheckReference self_check_reference(int samples = 32) const;
+  /// self_check against a reference of an operator with the same collocation rows and occluders
+  /// (std::invalid_argument when its rows are not held or its vectors are not of length n).
+  FastSelfCheck self_check(const FastSelfCheckReference& reference) const;
 
   /// The test vectors of self_check, with their names: deterministic functions of the
   /// collocation points (and facets) of this operator.
@@ -188,15 +215,17 @@ class FastOperator final : public RadiosityOperator {
   std::size_t local_row(geometry::Index i, const char* who) const;
 
   std::vector<geometry::Index> self_check_rows(int samples) const;
-  void self_check_products(const std::vector<geometry::Index>& rows,
-                           const std::vector<std::pair<std::string, Eigen::VectorXd>>& vectors,
-                           const std::vector<std::vector<double>>& moments, std::vector<double>& exact,
-                           std::vector<double>& scale, std::vector<double>& fast) const;
+  void exact_rows(FastSelfCheckReference& reference) const;
 
   void compute_moments(const Eigen::VectorXd& v, std::vector<double>& moments) const;
   void far_coefficients(geometry::Index i, geometry::Index cluster, double* c) const;
   double apply_row(geometry::Index i, const Eigen::VectorXd& v, const std::vector<double>& moments,
                    double* scratch) const;
+  /// Row i of the product for C vectors: out[c] = (K_n v_c)_i, each from its own moments, every
+  /// sum in apply_row's order.
+  template <int C>
+  void apply_row_columns(geometry::Index i, const double* const* v, const double* const* moments, double* scratch,
+                         double* out) const;
 
   std::shared_ptr<const geometry::ClusterTree> tree_;
   FastOptions options_;
@@ -226,6 +255,7 @@ class FastOperator final : public RadiosityOperator {
   std::vector<std::int64_t> far_start_;
   std::vector<geometry::Index> far_cluster_;
   LargeBuffer far_coef_;                         // uninitialized, huge pages, filled in parallel
+  std::vector<char> probed_;                     // probe_samples > 0: per row held, covered or not
   FastStatistics stats_;
 };
 

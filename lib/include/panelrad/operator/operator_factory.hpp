@@ -1,6 +1,7 @@
 #pragma once
 // Builds the operator K_n of (32): the dense matrix (33) or the fast product of section 4, for a
 // collocation (22) of a scene and a visibility policy.
+#include <panelrad/geometry/occluders.hpp>
 #include <panelrad/operator/clustering_parameters.hpp>
 #include <panelrad/operator/collocation.hpp>
 #include <panelrad/operator/linear_operator.hpp>
@@ -58,6 +59,10 @@ struct OperatorOptions : ClusteringParameters {
 /// Called when a setup stage starts ("dense matrix, n = 3072"; the fast operator's near field and
 /// far field), e.g. for progress on stderr. May be empty.
 using SetupProgress = std::function<void(const std::string&)>;
+
+/// The scene's faces as occluders: the level-0 triangles of the cluster tree (the validated,
+/// oriented input triangles; refinement adds no face).
+std::shared_ptr<const geometry::Occluders> scene_occluders(const geometry::ClusterTree& tree);
 
 /// The operator with rows weighted by the collocation's reflectivity (33):
 /// (K_n v)_i = rho(P_i)/pi Int_S v G(P_i, Q) V(P_i, Q) dS_Q. options.method automatic and

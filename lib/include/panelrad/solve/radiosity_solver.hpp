@@ -19,8 +19,12 @@
 //      K_c = diag(rho_c) H in every channel c (33); or, with options.fold_reflectivity, K_n itself
 //      with the rho of channel 0 in its rows (the fast method then skips the rows with rho = 0);
 //   6. the fast method: FastOperator::self_check against self_check_threshold; automatic
-//      parameters (or manual ones with tighten_on_failed_check) are tightened (tighten_parameters) and the operator rebuilt until the check
-//      passes or nothing is stricter (a warning then);
+//      parameters (or manual ones with tighten_on_failed_check) are tightened
+//      (tighten_parameters) and the operator rebuilt until the check passes or nothing is
+//      stricter (a warning then). With V computed (occluded), the settings are measured on
+//      probes of the sampled rows first (FastOptions::probe_samples) and the operator is built
+//      once: the first setting when it passes, else the cheapest passing stricter_settings;
+//   then solve_channels solves every channel, the Neumann ones in one pass over H per step.
 //   7. the iteration's tolerance: options.solver.tolerance, or (<= 0) discretization_tolerance.
 // solve(): (I - diag(rho) H) u = E by options.solver.kind (automatic: choose_solver(max rho)).
 #include <panelrad/operator/collocation.hpp>
@@ -101,6 +105,7 @@ struct ChannelSolve {
   double residual = 0;         ///< ||E - (I - K) u||_inf / ||E||_inf
   double convergence_ratio = 0;  ///< Neumann: (36)
   double seconds = 0;
+  Eigen::VectorXd irradiance;  ///< H u, the light arriving (the product without rho): solve_channels only
   bool converged() const { return status == SolveStatus::converged; }
 };
 
@@ -124,6 +129,8 @@ struct RadiositySolverInfo {
 
 class RadiositySolver {
  public:
+  /// Rows sampled by the fast operator's self-check (step 6).
+  static constexpr int kSelfCheckSamples = 32;
   /// Setup (header). Keeps a reference to `scene`: it must outlive the solver. Throws
   /// std::invalid_argument (bad options or data, naming them), ResourceError (a size that does not
   /// fit, before any work, or an allocation that failed, naming the stage).
@@ -153,14 +160,24 @@ class RadiositySolver {
   ChannelSolve solve(std::size_t channel) const;
   /// Any data at the collocation points: rho (each passing reflectivity_problem) and E (finite).
   ChannelSolve solve(const Eigen::VectorXd& rho, const Eigen::VectorXd& E) const;
+  /// The scene's channels, each solved as solve(channel) solves it (the same iterates, bit for
+  /// bit), with its irradiance H u. The channels solved by the Neumann iteration (34) advance
+  /// together: each step multiplies the iterates of all the channels still iterating in one
+  /// pass over the operator (RadiosityOperator::apply_block), and the product that gives a
+  /// channel's residual also gives its irradiance. Channels solved by GMRES or LU go one by
+  /// one. std::logic_error with fold_reflectivity (the operator has no H).
+  std::vector<ChannelSolve> solve_channels(const std::vector<std::size_t>& channels) const;
 
  private:
   void setup();
   void choose_parameters_and_plan();
   void discretize();
   void build_operator();
+  void choose_by_probes(const Collocation& rows, OperatorOptions& op);
   std::unique_ptr<RadiosityOperator> make(const Collocation& rows, const OperatorOptions& op);
   ChannelSolve solve_values(const Eigen::VectorXd& rho, const Eigen::VectorXd& E, const std::string& label) const;
+  SolverOptions iteration_options(const std::string& label) const;
+  SolverKind solver_kind(double max_rho) const;
   void say(const std::string& line) const;
 
   const Scene& scene_;

@@ -60,6 +60,36 @@ void require_converged(const SolveResult& result);
 /// not_converged); an iterate that is not finite is a SolverError.
 /// Neumann iteration (34), u^(0) = 0: u^(k+1) = E + K u^(k).
 SolveResult solve_neumann(const RadiosityOperator& K, const Eigen::VectorXd& E, const SolverOptions& options);
+/// The Neumann iteration (34) as a sequence of products, so that several equations can share each
+/// pass over one operator (RadiosityOperator::apply_block): next() is the vector to multiply by K,
+/// take(K next()) advances. After the iteration stops (converged, or max_iterations), one more
+/// product, of the final u, gives the residual; then finished(). solve_neumann is this loop with
+/// K.apply, so an equation iterated here gives solve_neumann's result bit for bit.
+class NeumannIteration {
+ public:
+  /// E finite (checked by the caller, as solve_neumann does).
+  NeumannIteration(Eigen::VectorXd E, SolverOptions options);
+  bool finished() const { return phase_ == Phase::finished; }
+  /// The next product is the final u's, for the residual.
+  bool awaiting_residual() const { return phase_ == Phase::residual; }
+  /// u^(k) while iterating; the final u while the residual's product is awaited.
+  const Eigen::VectorXd& next() const { return u_; }
+  /// Advances with Kv = K next(); SolverError when an iterate is not finite.
+  void take(const Eigen::VectorXd& Kv);
+  /// The result once finished() (seconds not set).
+  const SolveResult& result() const { return r_; }
+  SolveResult&& release() { return std::move(r_); }
+
+ private:
+  enum class Phase { iterating, residual, finished };
+  void stop(SolveStatus status);
+  Eigen::VectorXd E_, u_;
+  SolverOptions options_;
+  SolveResult r_;
+  Phase phase_ = Phase::iterating;
+  double previous_norm_ = 0, ratio_ = 0, e_norm_ = 0;
+};
+
 /// Restarted GMRES on (I - K) u = E; stops on the relative residual, mapped to an error bound
 /// with ||(I-K)^-1|| <= 1/(1 - max rho) (paper (11)).
 SolveResult solve_gmres(const RadiosityOperator& K, const Eigen::VectorXd& E, const SolverOptions& options,
@@ -74,6 +104,9 @@ double discretization_tolerance(double h, double diameter);
 
 /// The solver `automatic` resolves to for this largest reflectivity (NaN: unknown -> GMRES).
 SolverKind choose_solver(double max_reflectivity);
+
+/// Why `automatic` chose choose_solver(max_reflectivity): the text of SolveResult::choice.
+std::string solver_choice(double max_reflectivity);
 
 /// Dispatch on options.kind; LU needs a DenseOperator (std::invalid_argument otherwise).
 SolveResult solve(const RadiosityOperator& K, const Eigen::VectorXd& E, const SolverOptions& options,
