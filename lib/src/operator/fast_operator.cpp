@@ -425,11 +425,13 @@ void FastOperator::compute_moments(const Eigen::VectorXd& v, std::vector<double>
 }
 
 // Row i (held) of the fast product (43) for C vectors, from their cluster moments: near field plus
-// far field (47). Each column's sum runs over the same terms in the same order as for C = 1, so
-// that a column of a block product is bit-identical to the product of that column alone; the
-// near-field lists and far coefficients are read once for all C.
+// far field (47). v and moments hold the C columns interleaved (entry j of column c at j C + c), so
+// that the C sums advance together, in SIMD registers where the compiler can. Each column's sum
+// runs over the same terms in the same order as for C = 1, so that a column of a block product is
+// bit-identical to the product of that column alone; the lists and far coefficients are read once
+// for all C.
 template <int C>
-void FastOperator::apply_row_columns(Index i, const double* const* v, const double* const* moments, double* scratch,
+void FastOperator::apply_row_columns(Index i, const double* v, const double* moments, double* scratch,
                                      double* out) const {
   const std::size_t T = static_cast<std::size_t>(terms_);
   const std::size_t r = static_cast<std::size_t>(i - row_begin_);
@@ -437,8 +439,8 @@ void FastOperator::apply_row_columns(Index i, const double* const* v, const doub
   for (int c = 0; c < C; ++c) sum[c] = 0;
   for (std::int64_t j = near_start_[r]; j < near_start_[r + 1]; ++j) {
     const double k = near_val_[static_cast<std::size_t>(j)];
-    const Index col = near_col_[static_cast<std::size_t>(j)];
-    for (int c = 0; c < C; ++c) sum[c] += k * v[c][col];
+    const double* vj = v + static_cast<std::size_t>(near_col_[static_cast<std::size_t>(j)]) * C;
+    for (int c = 0; c < C; ++c) sum[c] += k * vj[c];
   }
   for (std::int64_t j = far_start_[r]; j < far_start_[r + 1]; ++j) {
     const Index cl = far_cluster_[static_cast<std::size_t>(j)];
@@ -449,19 +451,26 @@ void FastOperator::apply_row_columns(Index i, const double* const* v, const doub
       far_coefficients(i, cl, scratch);
       coef = scratch;
     }
-    const std::size_t offset = static_cast<std::size_t>(cl) * T;
-    for (std::size_t t = 0; t < T; ++t)
-      for (int c = 0; c < C; ++c) sum[c] += coef[t] * moments[c][offset + t];  // (47)
+    const double* m = moments + static_cast<std::size_t>(cl) * T * C;
+    if constexpr (C % 2 == 0) {
+      // Packets of columns (Eigen's SIMD arithmetic is the scalar IEEE arithmetic, lane by lane).
+      using Packet = Eigen::Array<double, C, 1>;
+      Packet acc = Eigen::Map<const Packet>(sum);
+      for (std::size_t t = 0; t < T; ++t) acc += coef[t] * Eigen::Map<const Packet>(m + t * C);  // (47)
+      Eigen::Map<Packet> sums(sum);
+      sums = acc;
+    } else {
+      for (std::size_t t = 0; t < T; ++t)
+        for (int c = 0; c < C; ++c) sum[c] += coef[t] * m[t * C + c];  // (47)
+    }
   }
   for (int c = 0; c < C; ++c) out[c] = sum[c];
 }
 
 double FastOperator::apply_row(Index i, const Eigen::VectorXd& v, const std::vector<double>& moments,
                                double* scratch) const {
-  const double* vp = v.data();
-  const double* mp = moments.data();
   double out;
-  apply_row_columns<1>(i, &vp, &mp, scratch, &out);
+  apply_row_columns<1>(i, v.data(), moments.data(), scratch, &out);
   return out;
 }
 
@@ -493,18 +502,25 @@ void FastOperator::apply_block(const Eigen::MatrixXd& V, Eigen::MatrixXd& Y) con
     throw std::logic_error("FastOperator::apply_block: the operator holds only rows [" + std::to_string(row_begin_) +
                            ", " + std::to_string(row_end_) + ") of n = " + std::to_string(n_));
   if (V.rows() != n_) throw std::invalid_argument("FastOperator::apply_block: vector size differs from n");
+  static_assert(kBlockColumns == 4, "apply_block dispatches on 1..4 columns");
   const Index columns = static_cast<Index>(V.cols());
   Y.resize(n_, columns);
-  std::vector<std::vector<double>> moments(static_cast<std::size_t>(std::min<Index>(columns, kBlockColumns)));
+  const std::size_t n = static_cast<std::size_t>(n_);
+  std::vector<double> moments, v_block, m_block;
   for (Index first = 0; first < columns; first += kBlockColumns) {
     const int C = static_cast<int>(std::min<Index>(kBlockColumns, columns - first));
-    const double* v[kBlockColumns];
-    const double* m[kBlockColumns];
+    // The group's columns and their moments (48), interleaved: entry j of column c at j C + c.
+    v_block.resize(n * static_cast<std::size_t>(C));
     for (int c = 0; c < C; ++c) {
       const Eigen::VectorXd column = V.col(first + c);  // compute_moments reads a vector
-      compute_moments(column, moments[static_cast<std::size_t>(c)]);
-      v[c] = V.col(first + c).data();
-      m[c] = moments[static_cast<std::size_t>(c)].data();
+      compute_moments(column, moments);
+      if (c == 0) m_block.resize(moments.size() * static_cast<std::size_t>(C));
+      const std::size_t M = moments.size();
+#pragma omp parallel for schedule(static)
+      for (std::size_t j = 0; j < std::max(n, M); ++j) {
+        if (j < n) v_block[j * static_cast<std::size_t>(C) + static_cast<std::size_t>(c)] = column[static_cast<Index>(j)];
+        if (j < M) m_block[j * static_cast<std::size_t>(C) + static_cast<std::size_t>(c)] = moments[j];
+      }
     }
 #pragma omp parallel
     {
@@ -513,10 +529,10 @@ void FastOperator::apply_block(const Eigen::MatrixXd& V, Eigen::MatrixXd& Y) con
 #pragma omp for schedule(dynamic, 256)
       for (Index r = 0; r < n_; ++r) {
         switch (C) {
-          case 1: apply_row_columns<1>(r, v, m, scratch.data(), out); break;
-          case 2: apply_row_columns<2>(r, v, m, scratch.data(), out); break;
-          case 3: apply_row_columns<3>(r, v, m, scratch.data(), out); break;
-          default: apply_row_columns<4>(r, v, m, scratch.data(), out); break;
+          case 1: apply_row_columns<1>(r, v_block.data(), m_block.data(), scratch.data(), out); break;
+          case 2: apply_row_columns<2>(r, v_block.data(), m_block.data(), scratch.data(), out); break;
+          case 3: apply_row_columns<3>(r, v_block.data(), m_block.data(), scratch.data(), out); break;
+          default: apply_row_columns<4>(r, v_block.data(), m_block.data(), scratch.data(), out); break;
         }
         for (int c = 0; c < C; ++c) Y(r, first + c) = out[c];
       }

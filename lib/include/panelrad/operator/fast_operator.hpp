@@ -222,9 +222,9 @@ class FastOperator final : public RadiosityOperator {
   double apply_row(geometry::Index i, const Eigen::VectorXd& v, const std::vector<double>& moments,
                    double* scratch) const;
   /// Row i of the product for C vectors: out[c] = (K_n v_c)_i, each from its own moments, every
-  /// sum in apply_row's order.
+  /// sum in apply_row's order; v and moments hold the C columns interleaved (j C + c).
   template <int C>
-  void apply_row_columns(geometry::Index i, const double* const* v, const double* const* moments, double* scratch,
+  void apply_row_columns(geometry::Index i, const double* v, const double* moments, double* scratch,
                          double* out) const;
 
   std::shared_ptr<const geometry::ClusterTree> tree_;
