@@ -2,7 +2,6 @@
 // product is the single product of that column, bit for bit (the same sums in the same order), for
 // the fast operator on a convex surface and with the line-of-sight function V, across the
 // operator's column groups (FastOperator::kBlockColumns), and for the dense operator's default.
-#include <panelrad/geometry/scene_validation.hpp>
 #include <panelrad/operator/collocation.hpp>
 #include <panelrad/operator/dense_operator.hpp>
 #include <panelrad/operator/fast_operator.hpp>
@@ -10,7 +9,7 @@
 #include <panelrad/scene/scene.hpp>
 
 #include "occluded_scenes.hpp"
-#include "validated_meshes.hpp"
+#include "test_scenes.hpp"
 
 #include <gtest/gtest.h>
 
@@ -21,14 +20,6 @@
 
 namespace panelrad {
 namespace {
-
-// The cube with rho = 0.5 (a scene's default rho is 0, whose rows are not computed).
-Scene reflecting_cube() {
-  Scene cube(testing::validated_builtin("cube"));
-  cube.set_reflectivity(0.5);
-  cube.set_emissivity(1.0);
-  return cube;
-}
 
 // Columns unlike each other: uniform, sign-changing, smooth in the index, and zero.
 Eigen::MatrixXd test_block(Index n, Index columns) {
@@ -55,15 +46,7 @@ void expect_columns_bit_identical(const RadiosityOperator& op, Index columns) {
   }
 }
 
-Scene room_scene() {
-  geometry::TriangleMesh mesh = testing::room_with_box();
-  const geometry::SceneValidationReport report = geometry::validate_scene(mesh);
-  EXPECT_TRUE(report.valid) << report.message;
-  Scene scene(std::move(mesh), {"value"}, report.shape);
-  scene.set_reflectivity(0.5);
-  scene.set_emissivity(1.0);
-  return scene;
-}
+Scene room_scene() { return testing::general_scene(testing::room_with_box()); }
 
 OperatorOptions fast(double eta, int degree) {
   OperatorOptions o;
@@ -74,7 +57,7 @@ OperatorOptions fast(double eta, int degree) {
 }
 
 TEST(BlockProduct, FastConvexColumnsAreSingleProducts) {
-  const Scene cube = reflecting_cube();
+  const Scene cube = testing::reflecting_builtin("cube");
   const Collocation col(cube, 3);
   const auto op = make_operator(col, fast(0.4, 6));
   ASSERT_GT(dynamic_cast<const FastOperator&>(*op).statistics().far_pairs, 0u);
@@ -89,7 +72,7 @@ TEST(BlockProduct, FastOccludedColumnsAreSingleProducts) {
 }
 
 TEST(BlockProduct, FastWithCoefficientsRecomputed) {
-  const Scene cube = reflecting_cube();
+  const Scene cube = testing::reflecting_builtin("cube");
   const Collocation col(cube, 3);
   FastOptions o;
   o.eta = 0.5;
@@ -111,7 +94,7 @@ TEST(BlockProduct, DenseDefaultColumnsAreSingleProducts) {
 }
 
 TEST(BlockProduct, RefusesWrongSizesAndPartialOperators) {
-  const Scene cube = reflecting_cube();
+  const Scene cube = testing::reflecting_builtin("cube");
   const Collocation col(cube, 2);
   FastOptions o;
   o.eta = 0.5;

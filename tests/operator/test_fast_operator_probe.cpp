@@ -2,7 +2,6 @@
 // self-check samples measures, bit for bit, what the whole operator's self-check measures (each
 // row's covering (42), near field (43) and far coefficients (44)-(45) are computed independently of
 // the other rows), and one exact reference serves every eta and M on the same rows.
-#include <panelrad/geometry/scene_validation.hpp>
 #include <panelrad/operator/auto_parameters.hpp>
 #include <panelrad/operator/collocation.hpp>
 #include <panelrad/operator/fast_operator.hpp>
@@ -10,7 +9,7 @@
 #include <panelrad/scene/scene.hpp>
 
 #include "occluded_scenes.hpp"
-#include "validated_meshes.hpp"
+#include "test_scenes.hpp"
 
 #include <gtest/gtest.h>
 
@@ -20,23 +19,11 @@
 namespace panelrad {
 namespace {
 
-// The cube with rho = 0.5 (a scene's default rho is 0, whose rows are not computed).
-Scene reflecting_cube() {
-  Scene cube(testing::validated_builtin("cube"));
-  cube.set_reflectivity(0.5);
-  cube.set_emissivity(1.0);
-  return cube;
-}
-
 Scene occluded_scene() {
-  geometry::TriangleMesh mesh = testing::room_with_box();
-  const geometry::SceneValidationReport report = geometry::validate_scene(mesh);
-  EXPECT_TRUE(report.valid) << report.message;
-  Scene scene(std::move(mesh), {"value"}, report.shape);
+  Scene scene = testing::general_scene(testing::room_with_box());
   std::vector<double> rho;
   for (Index f = 0; f < scene.num_facets(); ++f) rho.push_back(0.2 + 0.1 * static_cast<double>(f % 6));
   scene.set_reflectivity(rho);
-  scene.set_emissivity(1.0);
   return scene;
 }
 
@@ -88,7 +75,7 @@ TEST(FastOperatorProbe, OccludedProbeMeasuresTheWholeOperatorsCheck) {
 }
 
 TEST(FastOperatorProbe, ConvexProbeMeasuresTheWholeOperatorsCheck) {
-  const Scene cube = reflecting_cube();
+  const Scene cube = testing::reflecting_builtin("cube");
   const Collocation col(cube, 3);
   expect_probe_matches_whole(col, options(0.5, 3, nullptr), 32);
 }

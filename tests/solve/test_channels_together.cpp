@@ -3,7 +3,6 @@
 // same products, now one pass over H for all of them), with H u for the irradiance; and on an
 // occluded scene the automatic setting is chosen on probes of the self-check's rows, the operator
 // being built once with a setting whose check is its own.
-#include <panelrad/geometry/scene_validation.hpp>
 #include <panelrad/operator/auto_parameters.hpp>
 #include <panelrad/operator/fast_operator.hpp>
 #include <panelrad/operator/operator_factory.hpp>
@@ -11,7 +10,7 @@
 #include <panelrad/solve/radiosity_solver.hpp>
 
 #include "occluded_scenes.hpp"
-#include "validated_meshes.hpp"
+#include "test_scenes.hpp"
 
 #include <gtest/gtest.h>
 
@@ -22,10 +21,7 @@ namespace {
 
 // Three colour channels of different rho and E per facet on a room with a box (V computed).
 Scene three_channel_room() {
-  geometry::TriangleMesh mesh = testing::room_with_box();
-  const geometry::SceneValidationReport report = geometry::validate_scene(mesh);
-  EXPECT_TRUE(report.valid) << report.message;
-  Scene scene(std::move(mesh), {"R", "G", "B"}, report.shape);
+  Scene scene = testing::general_scene(testing::room_with_box(), {"R", "G", "B"});
   for (std::size_t c = 0; c < 3; ++c) {
     std::vector<double> rho, E;
     for (Index f = 0; f < scene.num_facets(); ++f) {
@@ -103,9 +99,7 @@ TEST(ChannelsTogether, NotConvergedKeepsItsMessage) {
 }
 
 TEST(ChannelsTogether, FoldedReflectivityHasNoH) {
-  Scene cube(testing::validated_builtin("cube"));
-  cube.set_reflectivity(0.5);
-  cube.set_emissivity(1.0);
+  const Scene cube = testing::reflecting_builtin("cube");
   RadiositySolverOptions o;
   o.level = 1;
   o.fold_reflectivity = true;

@@ -1,0 +1,40 @@
+#pragma once
+// Scenes with data for the operator and solver tests: a built-in convex solid, or a general
+// (non-convex) mesh after validate_scene, with rho and E the same on every facet.
+#include <panelrad/geometry/scene_validation.hpp>
+#include <panelrad/scene/scene.hpp>
+
+#include "validated_meshes.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <utility>
+
+namespace panelrad::testing {
+
+/// make_builtin(spec), validated, with rho and E on every facet (a scene's default rho is 0, and
+/// the fast method does not compute the rows with rho = 0).
+inline Scene reflecting_builtin(const std::string& spec, double rho = 0.5, double E = 1.0) {
+  Scene scene(validated_builtin(spec));
+  scene.set_reflectivity(rho);
+  scene.set_emissivity(E);
+  return scene;
+}
+
+/// A general scene (validate_scene must accept it, and not as convex) with the given channels and
+/// rho and E on every facet of every channel (set per facet afterwards where a test needs it).
+inline Scene general_scene(geometry::TriangleMesh mesh, std::vector<std::string> channels = {"value"}, double rho = 0.5,
+                           double E = 1.0) {
+  const geometry::SceneValidationReport report = geometry::validate_scene(mesh);
+  EXPECT_TRUE(report.valid) << mesh.source << ": " << report.message;
+  EXPECT_EQ(report.shape, geometry::SceneShape::general) << mesh.source;
+  Scene scene(std::move(mesh), std::move(channels), report.shape);
+  for (std::size_t c = 0; c < scene.num_channels(); ++c) {
+    scene.set_reflectivity(rho, c);
+    scene.set_emissivity(E, c);
+  }
+  return scene;
+}
+
+}  // namespace panelrad::testing
