@@ -111,8 +111,16 @@ std::vector<LevelMemoryEstimate> estimate_levels_memory(const geometry::Triangle
         e.solver = saturate((m + 6) * n * sizeof(double));
         break;
       }
-      default:  // Neumann: u, K u, the step, the next iterate, the previous step and a residual
-        e.solver = saturate(6 * n * sizeof(double));
+      default: {  // Neumann: u, K u, the step, the next iterate, the previous step and a residual
+        // Per equation iterated together, also E, rho and its columns of the block product
+        // (V, H V), and for the fast operator each column's moments (48) of the block, interleaved.
+        const long double together = std::max(1, options.channels_together);
+        long double bytes = (together == 1 ? 6 : 10 * together) * n * sizeof(double);
+        if (op.method == OperatorMethod::fast && together > 1)
+          bytes += std::min<long double>(together, FastOperator::kBlockColumns) * (n * 4 / 3) *
+                   num_taylor_terms(op.degree) * sizeof(double);
+        e.solver = saturate(bytes);
+      }
     }
     out.push_back(e);
   }

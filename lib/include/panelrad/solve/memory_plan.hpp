@@ -52,6 +52,10 @@ struct LevelMemoryEstimate {
 struct LevelMemoryOptions {
   int collocation_vectors = 3;           ///< doubles per element kept by the collocation(s)
   std::size_t field_bytes_per_element = 0;  ///< results kept per element by the caller
+  /// Equations iterated together (RadiositySolver::solve_channels: the Neumann channels of a
+  /// scene), each with its vectors, and the fast operator's moments (48) of up to
+  /// FastOperator::kBlockColumns of them per block product.
+  int channels_together = 1;
 };
 
 /// A level to be solved and the operator it will get.
