@@ -7,11 +7,13 @@
 //   - a general scene (default: the real Cornell box; with n0 = 48 its level L has the n of the
 //     cube's level L + 1, n = 48 4^L).
 // Each row: n, the operator's setup time (covering (42) with the classification, near field (43),
-// far coefficients), the time of one product K_n v (the median of --products K, default 9), the
-// bytes held per element, and the pairs classified. The parameters are the same for every row of
+// far coefficients), the time of one product K_n v (the median of --products K, default 9), that
+// of one block product of 3 vectors (apply_block, as the three colour channels of a scene are
+// iterated: the stored far field read once for all three; the median of K), the bytes held per
+// element, and the pairs classified. The parameters are the same for every row of
 // a level: choose_parameters for the general scene's size (the automatic choice at 5% of the
-// discretization error, with rho_max 0.5; no self-check, so no tightening).
-//   usage: visibility [--scene OBJ] [--levels L0 L1] [--threads T] [--products K] [--no-cube]
+// discretization error, with rho_max 0.5; no self-check, so no tightening), or --setting's.
+//   usage: visibility [--scene OBJ] [--levels L0 L1] [--threads T] [--products K] [--no-cube] [--setting ETA M]
 // Levels are those of the general scene; the cube runs at the level with the same n, when there is
 // one (the scene's n0 is 12 4^k).
 #include <panelrad/io/scene_file.hpp>
@@ -39,35 +41,50 @@ struct Row {
   std::string scene;
   Visibility visibility;
   Index n = 0;
-  double setup_s = 0, product_s = 0, bytes_per_element = 0;
+  double setup_s = 0, product_s = 0, block3_s = 0, bytes_per_element = 0;
   VisibilityWork work;
 };
 
 int g_products = 9;  // products timed per operator (the median is reported)
 bool g_cube = true;  // also the cube rows
+double g_eta = 0;    // --setting ETA M: these instead of the rule's
+int g_degree = 0;
 
 Row measure(const std::string& name, const Scene& scene, int level, const OperatorOptions& op, Visibility visibility) {
   const Collocation col(scene, level);
   const Collocation unit = col.with_row_weights(Eigen::VectorXd::Ones(col.size()));
   Stopwatch clock;
   const std::unique_ptr<RadiosityOperator> H = make_operator(unit, op, visibility);
-  Row r{name, visibility, col.size(), clock.seconds(), 0, 0, visibility_work(*H)};
-  Eigen::VectorXd v = Eigen::VectorXd::Ones(col.size()), y;
-  std::vector<double> times;
+  Row r{name, visibility, col.size(), clock.seconds(), 0, 0, 0, visibility_work(*H)};
+  const Eigen::VectorXd v = Eigen::VectorXd::Ones(col.size());
+  Eigen::MatrixXd V(col.size(), 3), Y;
+  V.col(0) = v;
+  V.col(1) = Eigen::VectorXd::LinSpaced(col.size(), 0.5, 1.5);
+  V.col(2) = Eigen::VectorXd::LinSpaced(col.size(), 1.0, 0.25);
+  Eigen::VectorXd y;
+  const auto median = [](std::vector<double> t) {
+    std::sort(t.begin(), t.end());
+    return t[t.size() / 2];
+  };
+  std::vector<double> single, block;
   for (int k = 0; k < g_products; ++k) {
     clock.restart();
     H->apply(v, y);
-    times.push_back(clock.seconds());
+    single.push_back(clock.seconds());
+    clock.restart();
+    H->apply_block(V, Y);
+    block.push_back(clock.seconds());
   }
-  std::sort(times.begin(), times.end());
-  r.product_s = times[times.size() / 2];
+  r.product_s = median(single);
+  r.block3_s = median(block);
   r.bytes_per_element = static_cast<double>(H->bytes()) / static_cast<double>(col.size());
   return r;
 }
 
 void print(const Row& r) {
-  std::printf("%-22s %-10s %8d %9.2f %9.4f %9.0f %12zu %12zu %12zu %10zu\n", r.scene.c_str(), to_string(r.visibility),
-              static_cast<int>(r.n), r.setup_s, r.product_s, r.bytes_per_element, r.work.visible_pairs,
+  std::printf("%-22s %-10s %8d %9.2f %9.4f %9.4f %9.0f %12zu %12zu %12zu %10zu\n", r.scene.c_str(),
+              to_string(r.visibility), static_cast<int>(r.n), r.setup_s, r.product_s, r.block3_s, r.bytes_per_element,
+              r.work.visible_pairs,
               r.work.hidden_pairs, r.work.partial_pairs, r.work.clipped_elements);
   std::fflush(stdout);
 }
@@ -91,12 +108,15 @@ int main(int argc, char** argv) {
       l1 = std::atoi(argv[++i]);
     } else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) {
       set_threads(std::atoi(argv[++i]));
+    } else if (!std::strcmp(argv[i], "--setting") && i + 2 < argc) {
+      g_eta = std::atof(argv[++i]);
+      g_degree = std::atoi(argv[++i]);
     } else if (!std::strcmp(argv[i], "--products") && i + 1 < argc) {
       g_products = std::max(1, std::atoi(argv[++i]));
     } else if (!std::strcmp(argv[i], "--no-cube")) {
       g_cube = false;
     } else {
-      std::cerr << "usage: visibility [--scene OBJ] [--levels L0 L1] [--threads T] [--products K] [--no-cube]\n";
+      std::cerr << "usage: visibility [--scene OBJ] [--levels L0 L1] [--threads T] [--products K] [--no-cube] [--setting ETA M]\n";
       return 2;
     }
   }
@@ -105,12 +125,16 @@ int main(int argc, char** argv) {
     const Scene cube = make_paper_cube_scene();
     std::printf("visibility cost, threads %d, scene %s (%zu triangles, %s)\n", max_threads(), scene_path.c_str(),
                 general.mesh().triangles.size(), geometry::to_string(general.shape()));
-    std::printf("%-22s %-10s %8s %9s %9s %9s %12s %12s %12s %10s\n", "scene", "V", "n", "setup s", "product s",
-                "B/elem", "visible", "hidden", "partial", "clipped");
+    std::printf("%-22s %-10s %8s %9s %9s %9s %9s %12s %12s %12s %10s\n", "scene", "V", "n", "setup s", "product s",
+                "3 cols s", "B/elem", "visible", "hidden", "partial", "clipped");
     for (int level = l0; level <= l1; ++level) {
       const Index n = static_cast<Index>(general.mesh().triangles.size()) << (2 * level);
       OperatorOptions op = choose_parameters(problem_size(general.mesh(), level), 0.05, 0.5);
       op.method = OperatorMethod::fast;
+      if (g_eta > 0) {
+        op.eta = g_eta;
+        op.degree = g_degree;
+      }
       std::printf("n = %d: %s\n", static_cast<int>(n), describe_parameters(op).c_str());
       if (const int cl = cube_level_for(n); g_cube && cl >= 0) {
         print(measure("cube (convex)", cube, cl, op, Visibility::unoccluded));
