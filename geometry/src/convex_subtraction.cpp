@@ -47,67 +47,72 @@ void subtract_convex(const Pieces& in, const Vec2* poly, int n_poly, double tol,
 void subtract_convex(const Pieces& in, const Vec2* line_at, const Vec2* line_in, int n_lines, const Vec2& slo,
                      const Vec2& shi, double tol, double min_area, Pieces& out) {
   out.clear();
-  thread_local std::vector<Vec2> cur, inner, outer;
-  thread_local std::vector<double> dist;
   std::uint32_t begin = 0;
   for (std::size_t k = 0; k < in.end.size(); ++k) {
     const std::uint32_t end = in.end[k];
-    const Vec2* piece = in.pts.data() + begin;
-    const int np = static_cast<int>(end - begin);
+    subtract_convex_from_piece(in.pts.data() + begin, static_cast<int>(end - begin), in.area[k], line_at, line_in,
+                               n_lines, slo, shi, tol, min_area, out);
     begin = end;
-    Vec2 lo = piece[0], hi = piece[0];
-    for (int i = 1; i < np; ++i) {
-      lo = lo.cwiseMin(piece[i]);
-      hi = hi.cwiseMax(piece[i]);
-    }
-    if ((hi.array() <= slo.array() + tol).any() || (lo.array() >= shi.array() - tol).any()) {
-      // Boxes apart: the shadow misses the piece, which is kept as it is.
-      if (np >= 3 && in.area[k] > min_area) {
-        out.pts.insert(out.pts.end(), piece, piece + np);
-        out.end.push_back(static_cast<std::uint32_t>(out.pts.size()));
-        out.area.push_back(in.area[k]);
-      }
-      continue;
-    }
-    cur.assign(piece, piece + np);
-    for (int j = 0; j < n_lines; ++j) {
-      const Vec2& a = line_at[j];
-      const Vec2& left = line_in[j];
-      const int n = static_cast<int>(cur.size());
-      dist.resize(cur.size());
-      double dmin = 0, dmax = 0;
-      for (int i = 0; i < n; ++i) {
-        dist[i] = (cur[i] - a).dot(left);
-        dmin = i == 0 ? dist[i] : std::min(dmin, dist[i]);
-        dmax = i == 0 ? dist[i] : std::max(dmax, dist[i]);
-      }
-      if (dmax <= tol) {  // outside this edge's line: the shadow misses what is left
-        emit(cur.data(), n, min_area, out);
-        break;
-      }
-      if (dmin >= -tol) continue;  // inside this edge's line: on to the next edge
-      // Split along the line; corners within tol of it belong to both sides (no slivers).
-      inner.clear();
-      outer.clear();
-      for (int i = 0; i < n; ++i) {
-        const int k2 = (i + 1) % n;
-        const double di = dist[i], dk = dist[k2];
-        const int si = di > tol ? 1 : (di < -tol ? -1 : 0);
-        const int sk = dk > tol ? 1 : (dk < -tol ? -1 : 0);
-        if (si >= 0) inner.push_back(cur[i]);
-        if (si <= 0) outer.push_back(cur[i]);
-        if (si * sk < 0) {
-          const Vec2 x = cur[i] + (di / (di - dk)) * (cur[k2] - cur[i]);
-          inner.push_back(x);
-          outer.push_back(x);
-        }
-      }
-      emit(outer.data(), static_cast<int>(outer.size()), min_area, out);
-      cur.swap(inner);
-      if (cur.size() < 3) break;
-    }
-    // What is inside every edge line is covered by the shadow: dropped.
   }
+}
+
+void subtract_convex_from_piece(const Vec2* piece, int np, double piece_area, const Vec2* line_at,
+                                const Vec2* line_in, int n_lines, const Vec2& slo, const Vec2& shi, double tol,
+                                double min_area, Pieces& out) {
+  thread_local std::vector<Vec2> cur, inner, outer;
+  thread_local std::vector<double> dist;
+  Vec2 lo = piece[0], hi = piece[0];
+  for (int i = 1; i < np; ++i) {
+    lo = lo.cwiseMin(piece[i]);
+    hi = hi.cwiseMax(piece[i]);
+  }
+  if ((hi.array() <= slo.array() + tol).any() || (lo.array() >= shi.array() - tol).any()) {
+    // Boxes apart: the shadow misses the piece, which is kept as it is.
+    if (np >= 3 && piece_area > min_area) {
+      out.pts.insert(out.pts.end(), piece, piece + np);
+      out.end.push_back(static_cast<std::uint32_t>(out.pts.size()));
+      out.area.push_back(piece_area);
+    }
+    return;
+  }
+  cur.assign(piece, piece + np);
+  for (int j = 0; j < n_lines; ++j) {
+    const Vec2& a = line_at[j];
+    const Vec2& left = line_in[j];
+    const int n = static_cast<int>(cur.size());
+    dist.resize(cur.size());
+    double dmin = 0, dmax = 0;
+    for (int i = 0; i < n; ++i) {
+      dist[i] = (cur[i] - a).dot(left);
+      dmin = i == 0 ? dist[i] : std::min(dmin, dist[i]);
+      dmax = i == 0 ? dist[i] : std::max(dmax, dist[i]);
+    }
+    if (dmax <= tol) {  // outside this edge's line: the shadow misses what is left
+      emit(cur.data(), n, min_area, out);
+      break;
+    }
+    if (dmin >= -tol) continue;  // inside this edge's line: on to the next edge
+    // Split along the line; corners within tol of it belong to both sides (no slivers).
+    inner.clear();
+    outer.clear();
+    for (int i = 0; i < n; ++i) {
+      const int k2 = (i + 1) % n;
+      const double di = dist[i], dk = dist[k2];
+      const int si = di > tol ? 1 : (di < -tol ? -1 : 0);
+      const int sk = dk > tol ? 1 : (dk < -tol ? -1 : 0);
+      if (si >= 0) inner.push_back(cur[i]);
+      if (si <= 0) outer.push_back(cur[i]);
+      if (si * sk < 0) {
+        const Vec2 x = cur[i] + (di / (di - dk)) * (cur[k2] - cur[i]);
+        inner.push_back(x);
+        outer.push_back(x);
+      }
+    }
+    emit(outer.data(), static_cast<int>(outer.size()), min_area, out);
+    cur.swap(inner);
+    if (cur.size() < 3) break;
+  }
+  // What is inside every edge line is covered by the shadow: dropped.
 }
 
 }  // namespace panelrad::geometry::occluder_detail

@@ -355,10 +355,13 @@ ShaftClass Occluders::classify_within(const ShadowPlane& plane, const std::array
   // shadows were cut away with it; front_part cuts sub there too.
   const Vec2 lo = c[0].cwiseMin(c[1]).cwiseMin(c[2]), hi = c[0].cwiseMax(c[1]).cwiseMax(c[2]);
   std::array<Vec2, 3> inward;  // normals of the edge lines (c[i], c[i+1]) towards sub (unnormalized)
+  std::array<double, 3> edge2;  // squared lengths of the edges (c[i], c[i+1])
   for (int i = 0; i < 3; ++i) {
     const Vec2 d = c[i + 1 < 3 ? i + 1 : 0] - c[i];
     inward[i] = Vec2(-d.y(), d.x());
+    edge2[i] = d.squaredNorm();
   }
+  constexpr double kInf = std::numeric_limits<double>::infinity();
   thread_local std::vector<const PlaneShadow*> shadows;
   shadows.clear();
   for (const Index k : among) {
@@ -371,19 +374,38 @@ ShaftClass Occluders::classify_within(const ShadowPlane& plane, const std::array
     // outside one line is missed by the shadow (it would subtract nothing), sub inside every line
     // is covered (nothing of it is seen, whatever the other shadows).
     bool covered = true, missed = false;
+    std::array<double, 3> depth = {kInf, kInf, kInf};  // distance of each corner inside the shadow's lines
     for (int j = 0; j < sh.lines && !missed; ++j) {
       const double d0 = (c[0] - sh.line_at[j]).dot(sh.line_in[j]);
       const double d1 = (c[1] - sh.line_at[j]).dot(sh.line_in[j]);
       const double d2 = (c[2] - sh.line_at[j]).dot(sh.line_in[j]);
       missed = std::max({d0, d1, d2}) <= m;
       covered = covered && std::min({d0, d1, d2}) >= -m;
+      depth = {std::min(depth[0], d0), std::min(depth[1], d1), std::min(depth[2], d2)};
     }
     if (missed) continue;
     if (covered) {
       meeting.clear();
       return ShaftClass::hidden;
     }
-    // The area of the shadow's part inside sub: clipped to sub's edge lines (Sutherland-Hodgman
+    // The area of the shadow's part inside sub exceeds the margin when a corner c_i of sub lies
+    // at depth r inside the shadow: the disk of radius r about c_i is in the shadow, and with it
+    // the triangle (c_i, c_i + r' e, c_i + r' e') of sub (e, e' the unit directions of sub's
+    // edges at c_i, r' = min(r, their lengths)), of area r'^2 sin(theta_i) / 2, where
+    // sin(theta_i) = twice_area / (|edge| |edge'|).
+    bool deep = false;
+    for (int i = 0; i < 3 && !deep; ++i) {
+      if (!(depth[i] > 0)) continue;
+      const double la2 = edge2[i], lb2 = edge2[i > 0 ? i - 1 : 2];
+      const double r2 = std::min({depth[i] * depth[i], la2, lb2});
+      deep = r2 * twice_area > 2 * area_margin * std::sqrt(la2 * lb2);
+    }
+    if (deep) {
+      meeting.push_back(k);
+      shadows.push_back(&sh);
+      continue;
+    }
+    // Otherwise the part inside sub, clipped to sub's edge lines (Sutherland-Hodgman
     // adds at most one corner per line: 8 + 3).
     std::array<Vec2, 12> buf_a, buf_b;
     const Vec2* cur = sh.p.data();
@@ -408,6 +430,46 @@ ShaftClass Occluders::classify_within(const ShadowPlane& plane, const std::array
   thread_local Pieces pieces, other;
   front_part(c, tP, straddles, pieces);
   const double min_area = 1e-3 * area_margin;  // as visible_pieces
+  if (!part) {
+    // Only the class is asked: the fragments of the front part are taken depth first through the
+    // shadows (the same fragments as shadow after shadow, each piece being cut independently), and
+    // the class is partial as soon as the fragments that survive every shadow exceed the margin.
+    const std::size_t S = shadows.size();
+    thread_local std::vector<Pieces> stage;  // stage[j]: fragments still to cut by shadow j
+    thread_local std::vector<Vec2> fragment;
+    if (stage.size() < S + 1) stage.resize(S + 1);
+    stage[0].swap(pieces);
+    for (std::size_t j = 1; j <= S; ++j) stage[j].clear();
+    double visible = 0;
+    std::size_t j = 0;
+    for (;;) {
+      while (stage[j].end.empty() && j > 0) --j;
+      Pieces& at = stage[j];
+      if (at.end.empty()) break;
+      const std::uint32_t end = at.end.back();
+      const std::uint32_t begin = at.end.size() > 1 ? at.end[at.end.size() - 2] : 0;
+      const double fragment_area = at.area.back();
+      fragment.assign(at.pts.begin() + begin, at.pts.begin() + end);
+      at.pts.resize(begin);
+      at.end.pop_back();
+      at.area.pop_back();
+      if (j == S) {
+        visible += fragment_area;
+        if (visible > area_margin) {
+          stage[0].swap(pieces);  // keep the buffers' capacity with this thread
+          return ShaftClass::partial;
+        }
+        continue;
+      }
+      const PlaneShadow& sh = *shadows[j];
+      subtract_convex_from_piece(fragment.data(), static_cast<int>(fragment.size()), fragment_area, sh.line_at.data(),
+                                 sh.line_in.data(), sh.lines, sh.lo, sh.hi, m, min_area, stage[j + 1]);
+      ++j;
+    }
+    stage[0].swap(pieces);
+    meeting.clear();
+    return ShaftClass::hidden;
+  }
   for (const PlaneShadow* sh : shadows) {
     if (pieces.end.empty()) break;
     subtract_convex(pieces, sh->line_at.data(), sh->line_in.data(), sh->lines, sh->lo, sh->hi, m, min_area, other);

@@ -107,6 +107,12 @@ void subtract_convex(const Pieces& in, const Vec2* poly, int n, double tol, doub
 void subtract_convex(const Pieces& in, const Vec2* line_at, const Vec2* line_in, int n_lines, const Vec2& slo,
                      const Vec2& shi, double tol, double min_area, Pieces& out);
 
+/// One piece (corners piece[0, np), area piece_area) minus the shadow given by its edge lines, the
+/// pieces of the difference appended to out (subtract_convex does this for each piece of `in`).
+void subtract_convex_from_piece(const Vec2* piece, int np, double piece_area, const Vec2* line_at,
+                                const Vec2* line_in, int n_lines, const Vec2& slo, const Vec2& shi, double tol,
+                                double min_area, Pieces& out);
+
 double polygon_area(const Vec2* p, int n);
 
 }  // namespace panelrad::geometry::occluder_detail

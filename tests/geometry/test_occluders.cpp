@@ -597,6 +597,10 @@ void walk_within(const Occluders& occ, const RandomConfig& c, const ShadowPlane&
   std::vector<Index> meeting;
   VisiblePart part;
   const ShaftClass cls = occ.classify_within(plane, sub, among, meeting, &part);
+  // Without the visible part (the subtraction may stop early), the same class and meeting shadows.
+  std::vector<Index> meeting_class_only;
+  EXPECT_EQ(occ.classify_within(plane, sub, among, meeting_class_only), cls);
+  EXPECT_EQ(meeting_class_only, meeting);
   std::vector<Index> faces, ref_meeting;
   for (const Index k : among) faces.push_back(plane.faces[static_cast<std::size_t>(k)]);
   VisiblePart ref;
