@@ -355,11 +355,13 @@ ShaftClass Occluders::classify_within(const ShadowPlane& plane, const std::array
   // shadows were cut away with it; front_part cuts sub there too.
   const Vec2 lo = c[0].cwiseMin(c[1]).cwiseMin(c[2]), hi = c[0].cwiseMax(c[1]).cwiseMax(c[2]);
   std::array<Vec2, 3> inward;  // normals of the edge lines (c[i], c[i+1]) towards sub (unnormalized)
-  std::array<double, 3> edge2;  // squared lengths of the edges (c[i], c[i+1])
+  std::array<double, 3> edge2;      // squared lengths of the edges (c[i], c[i+1])
+  std::array<double, 3> enter_tol;  // see clip_to_half_plane
   for (int i = 0; i < 3; ++i) {
     const Vec2 d = c[i + 1 < 3 ? i + 1 : 0] - c[i];
     inward[i] = Vec2(-d.y(), d.x());
     edge2[i] = d.squaredNorm();
+    enter_tol[i] = m * std::sqrt(edge2[i]);  // the distance margin in the units of inward[i]
   }
   constexpr double kInf = std::numeric_limits<double>::infinity();
   thread_local std::vector<const PlaneShadow*> shadows;
@@ -370,16 +372,16 @@ ShaftClass Occluders::classify_within(const ShadowPlane& plane, const std::array
                                   " is not in [0, " + std::to_string(plane.shadows.size()) + ")");
     const PlaneShadow& sh = plane.shadows[static_cast<std::size_t>(k)];
     if ((sh.hi.array() <= lo.array()).any() || (sh.lo.array() >= hi.array()).any()) continue;  // no common area
-    // sub's corners against the shadow's edge lines, with the tolerance of subtract_convex: sub
-    // outside one line is missed by the shadow (it would subtract nothing), sub inside every line
-    // is covered (nothing of it is seen, whatever the other shadows).
+    // sub's corners against the shadow's edge lines: sub on the outer side of one line has no
+    // area in common with the shadow; sub inside every line, with the tolerance of subtract_convex,
+    // is covered (the subtraction of this shadow leaves nothing, whatever the other shadows).
     bool covered = true, missed = false;
     std::array<double, 3> depth = {kInf, kInf, kInf};  // distance of each corner inside the shadow's lines
     for (int j = 0; j < sh.lines && !missed; ++j) {
       const double d0 = (c[0] - sh.line_at[j]).dot(sh.line_in[j]);
       const double d1 = (c[1] - sh.line_at[j]).dot(sh.line_in[j]);
       const double d2 = (c[2] - sh.line_at[j]).dot(sh.line_in[j]);
-      missed = std::max({d0, d1, d2}) <= m;
+      missed = std::max({d0, d1, d2}) <= 0;
       covered = covered && std::min({d0, d1, d2}) >= -m;
       depth = {std::min(depth[0], d0), std::min(depth[1], d1), std::min(depth[2], d2)};
     }
@@ -388,14 +390,16 @@ ShaftClass Occluders::classify_within(const ShadowPlane& plane, const std::array
       meeting.clear();
       return ShaftClass::hidden;
     }
-    // The area of the shadow's part inside sub exceeds the margin when a corner c_i of sub lies
-    // at depth r inside the shadow: the disk of radius r about c_i is in the shadow, and with it
-    // the triangle (c_i, c_i + r' e, c_i + r' e') of sub (e, e' the unit directions of sub's
-    // edges at c_i, r' = min(r, their lengths)), of area r'^2 sin(theta_i) / 2, where
-    // sin(theta_i) = twice_area / (|edge| |edge'|).
+    // The shadow meets sub when a corner c_i of sub lies at depth r > margin inside it: the disk
+    // of radius r about c_i is in the shadow, so the shadow enters sub farther than the margin
+    // past each of sub's edge lines (the rejection of clip_to_half_plane, as may_meet does with
+    // the planes of sub's shaft, cannot apply), and with the disk the triangle
+    // (c_i, c_i + r' e, c_i + r' e') of sub (e, e' the unit directions of sub's edges at c_i,
+    // r' = min(r, their lengths)), of area r'^2 sin(theta_i) / 2 with
+    // sin(theta_i) = twice_area / (|edge| |edge'|), which must exceed the area margin.
     bool deep = false;
     for (int i = 0; i < 3 && !deep; ++i) {
-      if (!(depth[i] > 0)) continue;
+      if (!(depth[i] > m)) continue;
       const double la2 = edge2[i], lb2 = edge2[i > 0 ? i - 1 : 2];
       const double r2 = std::min({depth[i] * depth[i], la2, lb2});
       deep = r2 * twice_area > 2 * area_margin * std::sqrt(la2 * lb2);
@@ -405,7 +409,9 @@ ShaftClass Occluders::classify_within(const ShadowPlane& plane, const std::array
       shadows.push_back(&sh);
       continue;
     }
-    // Otherwise the part inside sub, clipped to sub's edge lines (Sutherland-Hodgman
+    // Otherwise: rejected when the shadow enters sub by at most the margin past one of its edge
+    // lines (as may_meet for a face within the margin outside a plane of the shaft), else the
+    // area of the part inside sub, clipped to sub's edge lines (Sutherland-Hodgman
     // adds at most one corner per line: 8 + 3).
     std::array<Vec2, 12> buf_a, buf_b;
     const Vec2* cur = sh.p.data();
@@ -413,7 +419,7 @@ ShaftClass Occluders::classify_within(const ShadowPlane& plane, const std::array
     Vec2* spare = buf_b.data();
     int n = sh.n;
     for (int i = 0; i < 3 && n >= 3; ++i) {
-      const int clipped_n = clip_to_half_plane(cur, n, c[i], inward[i], nxt);
+      const int clipped_n = clip_to_half_plane(cur, n, c[i], inward[i], enter_tol[i], nxt);
       if (clipped_n < 0) continue;  // the shadow is on sub's side of this edge line
       n = clipped_n;
       cur = nxt;

@@ -92,8 +92,9 @@ void front_part(const std::array<Vec2, 3>& c, const std::array<double, 3>& tP, b
 
 /// The part of the convex polygon in[0, n) on the inner side (x - o).m >= 0 of a line
 /// (Sutherland-Hodgman) into out: at most n + 1 corners (n <= 11). Returns -1, out untouched, when
-/// the whole polygon is on the inner side.
-int clip_to_half_plane(const Vec2* in, int n, const Vec2& o, const Vec2& m, Vec2* out);
+/// the whole polygon is on the inner side, and 0 when no corner is farther inside than enter_tol
+/// (>= 0, in the units of (x - o).m).
+int clip_to_half_plane(const Vec2* in, int n, const Vec2& o, const Vec2& m, double enter_tol, Vec2* out);
 
 /// out = in minus the convex shadow poly[0, n) (counter-clockwise), by successive splits along the
 /// shadow's edge lines: the part of a piece outside an edge's line is a piece of the difference,

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace panelrad::geometry::occluder_detail {
 
@@ -187,16 +188,17 @@ void front_part_of_tau(const Shaft& s, Pieces& out) {
   front_part(c, s.tP, s.straddles, out);
 }
 
-int clip_to_half_plane(const Vec2* in, int n, const Vec2& o, const Vec2& m, Vec2* out) {
+int clip_to_half_plane(const Vec2* in, int n, const Vec2& o, const Vec2& m, double enter_tol, Vec2* out) {
   std::array<double, 12> d;
-  bool all_in = true, all_out = true;
+  bool all_in = true;
+  double d_max = -std::numeric_limits<double>::infinity();
   for (int i = 0; i < n; ++i) {
     d[i] = (in[i] - o).dot(m);
     all_in = all_in && d[i] >= 0;
-    all_out = all_out && d[i] < 0;
+    d_max = std::max(d_max, d[i]);
   }
   if (all_in) return -1;
-  if (all_out) return 0;
+  if (d_max <= enter_tol) return 0;
   int k = 0;
   for (int i = 0; i < n; ++i) {
     const int j = i + 1 < n ? i + 1 : 0;

@@ -136,10 +136,10 @@ class Occluders {
   /// T's nQ; its distance from the plane is not looked at) as seen from plane.P, in 2-D: `among`
   /// are indices of plane.shadows (those that meet a triangle containing sub), and `meeting` is
   /// replaced by those that meet sub (in the order of `among`; empty when sub is hidden): the
-  /// candidates of sub's sub-triangles. A shadow meets sub when sub's corners are not all within
-  /// the distance margin outside one of its edge lines and its part inside sub has an area above
-  /// the area margin; sub is hidden as soon as its corners are inside every edge line of one
-  /// shadow (by the distance margin, as in the subtraction of the shadows). The class and the
+  /// candidates of sub's sub-triangles. A shadow meets sub when its part inside sub has an area
+  /// above the area margin (as the shadow of the face clipped to sub's shaft in classify); sub is
+  /// hidden as soon as its corners are inside every edge line of one shadow (by the distance
+  /// margin, as in the subtraction of the shadows). The class and the
   /// visible part are those of classify with the faces of `among` up to rounding, and the
   /// decisions up to the margins of the rounding policy; the visible part's corners are computed
   /// in T's frame.
