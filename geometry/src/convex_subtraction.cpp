@@ -96,7 +96,7 @@ void subtract_convex_from_piece(const Vec2* piece, int np, double piece_area, co
     inner.clear();
     outer.clear();
     for (int i = 0; i < n; ++i) {
-      const int k2 = (i + 1) % n;
+      const int k2 = i + 1 < n ? i + 1 : 0;
       const double di = dist[i], dk = dist[k2];
       const int si = di > tol ? 1 : (di < -tol ? -1 : 0);
       const int sk = dk > tol ? 1 : (dk < -tol ? -1 : 0);

@@ -87,7 +87,7 @@ int clip(const Vec3* in, int n, const Vec3& o, const Vec3& m, Vec3* out) {
   double dc = (in[0] - o).dot(m);
   for (int i = 0; i < n; ++i) {
     const Vec3& c = in[i];
-    const Vec3& x = in[(i + 1) % n];
+    const Vec3& x = in[i + 1 < n ? i + 1 : 0];
     const double dx = (x - o).dot(m);
     if (dc >= 0) out[k++] = c;
     if ((dc >= 0) != (dx >= 0)) out[k++] = c + (dc / (dc - dx)) * (x - c);
@@ -113,7 +113,7 @@ double polygon_area(const Vec2* p, int n) {
   double a = 0;
   for (int i = 0; i < n; ++i) {
     const Vec2& x = p[i];
-    const Vec2& y = p[(i + 1) % n];
+    const Vec2& y = p[i + 1 < n ? i + 1 : 0];
     a += x.x() * y.y() - x.y() * y.x();
   }
   return a / 2;
