@@ -148,33 +148,38 @@ struct Occluders::Impl {
       meeting.push_back(t);
       shadows.push_back(sh);
     }
-    if (!std::is_sorted(meeting.begin(), meeting.end())) std::sort(meeting.begin(), meeting.end());
   }
 
   /// tau's front part minus the shadows, into `pieces`; returns its area.
   double visible_pieces(const Shaft& s, const std::vector<Shadow>& shadows, Pieces& pieces) const {
-    thread_local Pieces other;
     front_part_of_tau(s, pieces);
-    const double min_area = 1e-3 * s.area_margin;  // slivers below the rounding policy's resolution
-    for (const Shadow& sh : shadows) {
+    return subtract_all(shadows, 1e-3 * s.area_margin, pieces);
+  }
+
+  /// pieces minus the convex polygons (each with corners p[0, n)), pieces of area at most min_area
+  /// dropped; returns the area of what is left.
+  template <class Polygons>
+  double subtract_all(const Polygons& polygons, double min_area, Pieces& pieces) const {
+    thread_local Pieces other;
+    for (const auto& sh : polygons) {
       if (pieces.end.empty()) break;
-      subtract_convex(pieces, sh, margin, min_area, other);
-      std::swap(pieces.pts, other.pts);
-      std::swap(pieces.end, other.end);
+      subtract_convex(pieces, sh.p.data(), sh.n, margin, min_area, other);
+      pieces.swap(other);
     }
     double area = 0;
-    std::uint32_t begin = 0;
-    for (const std::uint32_t end : pieces.end) {
-      area += polygon_area(pieces.pts.data() + begin, static_cast<int>(end - begin));
-      begin = end;
-    }
+    for (const double a : pieces.area) area += a;
     return area;
   }
 
   static void write(const Shaft& s, const Pieces& pieces, double area, VisiblePart& out) {
+    write(s.t[0], s.u, s.w, pieces, area, out);
+  }
+
+  static void write(const Vec3& origin, const Vec3& u, const Vec3& w, const Pieces& pieces, double area,
+                    VisiblePart& out) {
     out.clear();
     out.points.reserve(pieces.pts.size());
-    for (const Vec2& p : pieces.pts) out.points.push_back(s.t[0] + p.x() * s.u + p.y() * s.w);
+    for (const Vec2& p : pieces.pts) out.points.push_back(origin + p.x() * u + p.y() * w);
     out.piece_end.assign(pieces.end.begin(), pieces.end.end());
     out.area = area;
   }
@@ -264,11 +269,225 @@ ShaftClass Occluders::classify(const Vec3& P, const Vec3& nP, const std::array<V
   thread_local std::vector<Shadow> shadows;
   shadows.clear();
   impl_->shadows_of(s, among, meeting, shadows);
+  if (!std::is_sorted(meeting.begin(), meeting.end())) std::sort(meeting.begin(), meeting.end());
   if (shadows.empty() && !s.straddles) return ShaftClass::full;
   thread_local Pieces pieces;
   const double area = impl_->visible_pieces(s, shadows, pieces);
   if (!(area > s.area_margin)) return ShaftClass::hidden;
   if (part) Impl::write(s, pieces, area, *part);
+  return ShaftClass::partial;
+}
+
+ShaftClass Occluders::classify(const Vec3& P, const Vec3& nP, const std::array<Vec3, 3>& tau, const Vec3& nQ,
+                               std::span<const Index> among, ShadowPlane& plane, VisiblePart* part) const {
+  plane.shadows.clear();
+  plane.faces.clear();
+  plane.seen = false;
+  if (part) part->clear();
+  Shaft s;
+  if (!make_shaft(P, nP, tau, nQ, impl_->margin, s)) return ShaftClass::hidden;
+  complete_shaft(s);
+  plane.P = s.P;
+  plane.nP = s.nP;
+  plane.origin = s.t[0];
+  plane.u = s.u;
+  plane.w = s.w;
+  plane.nQ = s.nQ;
+  plane.height = s.height;
+  plane.seen = true;
+  if (among.empty() && !s.straddles) return ShaftClass::full;  // the four plane tests decide
+  impl_->shadows_of(s, among, plane.faces, plane.shadows);
+  for (PlaneShadow& sh : plane.shadows) {
+    sh.lo = sh.hi = sh.p[0];
+    for (int j = 1; j < sh.n; ++j) {
+      sh.lo = sh.lo.cwiseMin(sh.p[j]);
+      sh.hi = sh.hi.cwiseMax(sh.p[j]);
+    }
+    sh.lines = 0;
+    for (int j = 0; j < sh.n; ++j) {
+      const Vec2 d = sh.p[j + 1 < sh.n ? j + 1 : 0] - sh.p[j];
+      const double len = d.norm();
+      if (!(len > impl_->margin)) continue;  // as subtract_convex: a degenerate edge bounds nothing
+      sh.line_at[sh.lines] = sh.p[j];
+      sh.line_in[sh.lines++] = Vec2(-d.y() / len, d.x() / len);
+    }
+  }
+  if (plane.shadows.empty() && !s.straddles) return ShaftClass::full;
+  thread_local Pieces pieces;
+  const double area = impl_->visible_pieces(s, plane.shadows, pieces);
+  if (!(area > s.area_margin)) return ShaftClass::hidden;
+  if (part) Impl::write(s, pieces, area, *part);
+  return ShaftClass::partial;
+}
+
+ShaftClass Occluders::classify_within(const ShadowPlane& plane, const std::array<Vec3, 3>& sub,
+                                      std::span<const Index> among, std::vector<Index>& meeting,
+                                      VisiblePart* part) const {
+  meeting.clear();
+  if (part) part->clear();
+  if (!plane.seen) return ShaftClass::hidden;
+  const double m = impl_->margin;
+  // sub in T's frame, counter-clockwise about nQ, and its corners' distances from P's plane. P's
+  // height over sub's plane is T's (plane.height > margin, as make_shaft checked).
+  std::array<Vec2, 3> c;
+  std::array<double, 3> tP;
+  for (int i = 0; i < 3; ++i) {
+    const Vec3 d = sub[i] - plane.origin;
+    c[i] = Vec2(d.dot(plane.u), d.dot(plane.w));
+    tP[i] = (sub[i] - plane.P).dot(plane.nP);
+  }
+  const Vec2 e1 = c[1] - c[0], e2 = c[2] - c[0];
+  double twice_area = e1.x() * e2.y() - e1.y() * e2.x();
+  if (twice_area < 0) {
+    std::swap(c[1], c[2]);
+    std::swap(tP[1], tP[2]);
+    twice_area = -twice_area;
+  }
+  if (!(twice_area > 0)) return ShaftClass::hidden;  // no area to see
+  const double tP_lo = std::min({tP[0], tP[1], tP[2]}), tP_hi = std::max({tP[0], tP[1], tP[2]});
+  if (!(tP_hi > m)) return ShaftClass::hidden;  // sub on or behind P's plane: cos theta_P <= 0
+  const bool straddles = tP_lo < -m;            // as make_shaft: a corner within the margin is on the plane
+  if (among.empty() && !straddles) return ShaftClass::full;
+  const double area_margin = kShadowMargin * twice_area / 2;
+
+  // The shadows on sub: those on T clipped to sub's three edge lines (the images of the planes of
+  // sub's shaft through P and its edges). On T's part behind P's plane (a straddling T) the
+  // shadows were cut away with it; front_part cuts sub there too.
+  const Vec2 lo = c[0].cwiseMin(c[1]).cwiseMin(c[2]), hi = c[0].cwiseMax(c[1]).cwiseMax(c[2]);
+  std::array<Vec2, 3> inward;  // normals of the edge lines (c[i], c[i+1]) towards sub (unnormalized)
+  std::array<double, 3> edge2;      // squared lengths of the edges (c[i], c[i+1])
+  std::array<double, 3> enter_tol;  // see clip_to_half_plane
+  for (int i = 0; i < 3; ++i) {
+    const Vec2 d = c[i + 1 < 3 ? i + 1 : 0] - c[i];
+    inward[i] = Vec2(-d.y(), d.x());
+    edge2[i] = d.squaredNorm();
+    enter_tol[i] = m * std::sqrt(edge2[i]);  // the distance margin in the units of inward[i]
+  }
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  thread_local std::vector<const PlaneShadow*> shadows;
+  shadows.clear();
+  for (const Index k : among) {
+    if (k < 0 || static_cast<std::size_t>(k) >= plane.shadows.size())
+      throw std::invalid_argument("Occluders::classify_within: shadow index " + std::to_string(k) +
+                                  " is not in [0, " + std::to_string(plane.shadows.size()) + ")");
+    const PlaneShadow& sh = plane.shadows[static_cast<std::size_t>(k)];
+    if ((sh.hi.array() <= lo.array()).any() || (sh.lo.array() >= hi.array()).any()) continue;  // no common area
+    // sub's corners against the shadow's edge lines: sub on the outer side of one line has no
+    // area in common with the shadow; sub inside every line, with the tolerance of subtract_convex,
+    // is covered (the subtraction of this shadow leaves nothing, whatever the other shadows).
+    bool covered = true, missed = false;
+    std::array<double, 3> depth = {kInf, kInf, kInf};  // distance of each corner inside the shadow's lines
+    for (int j = 0; j < sh.lines && !missed; ++j) {
+      const double d0 = (c[0] - sh.line_at[j]).dot(sh.line_in[j]);
+      const double d1 = (c[1] - sh.line_at[j]).dot(sh.line_in[j]);
+      const double d2 = (c[2] - sh.line_at[j]).dot(sh.line_in[j]);
+      missed = std::max({d0, d1, d2}) <= 0;
+      covered = covered && std::min({d0, d1, d2}) >= -m;
+      depth = {std::min(depth[0], d0), std::min(depth[1], d1), std::min(depth[2], d2)};
+    }
+    if (missed) continue;
+    if (covered) {
+      meeting.clear();
+      return ShaftClass::hidden;
+    }
+    // The shadow meets sub when a corner c_i of sub lies at depth r > margin inside it: the disk
+    // of radius r about c_i is in the shadow, so the shadow enters sub farther than the margin
+    // past each of sub's edge lines (the rejection of clip_to_half_plane, as may_meet does with
+    // the planes of sub's shaft, cannot apply), and with the disk the triangle
+    // (c_i, c_i + r' e, c_i + r' e') of sub (e, e' the unit directions of sub's edges at c_i,
+    // r' = min(r, their lengths)), of area r'^2 sin(theta_i) / 2 with
+    // sin(theta_i) = twice_area / (|edge| |edge'|), which must exceed the area margin.
+    bool deep = false;
+    for (int i = 0; i < 3 && !deep; ++i) {
+      if (!(depth[i] > m)) continue;
+      const double la2 = edge2[i], lb2 = edge2[i > 0 ? i - 1 : 2];
+      const double r2 = std::min({depth[i] * depth[i], la2, lb2});
+      deep = r2 * twice_area > 2 * area_margin * std::sqrt(la2 * lb2);
+    }
+    if (deep) {
+      meeting.push_back(k);
+      shadows.push_back(&sh);
+      continue;
+    }
+    // Otherwise: rejected when the shadow enters sub by at most the margin past one of its edge
+    // lines (as may_meet for a face within the margin outside a plane of the shaft), else the
+    // area of the part inside sub, clipped to sub's edge lines (Sutherland-Hodgman
+    // adds at most one corner per line: 8 + 3).
+    std::array<Vec2, 12> buf_a, buf_b;
+    const Vec2* cur = sh.p.data();
+    Vec2* nxt = buf_a.data();
+    Vec2* spare = buf_b.data();
+    int n = sh.n;
+    for (int i = 0; i < 3 && n >= 3; ++i) {
+      const int clipped_n = clip_to_half_plane(cur, n, c[i], inward[i], enter_tol[i], nxt);
+      if (clipped_n < 0) continue;  // the shadow is on sub's side of this edge line
+      n = clipped_n;
+      cur = nxt;
+      std::swap(nxt, spare);
+    }
+    if (n < 3) continue;
+    const double area_inside = cur == sh.p.data() ? sh.area : polygon_area(cur, n);
+    if (!(area_inside > area_margin)) continue;
+    meeting.push_back(k);
+    shadows.push_back(&sh);
+  }
+  if (shadows.empty() && !straddles) return ShaftClass::full;
+  // sub's front part minus the shadows on T: the same as minus their parts inside sub.
+  thread_local Pieces pieces, other;
+  front_part(c, tP, straddles, pieces);
+  const double min_area = 1e-3 * area_margin;  // as visible_pieces
+  if (!part) {
+    // Only the class is asked: the fragments of the front part are taken depth first through the
+    // shadows (the same fragments as shadow after shadow, each piece being cut independently), and
+    // the class is partial as soon as the fragments that survive every shadow exceed the margin.
+    const std::size_t S = shadows.size();
+    thread_local std::vector<Pieces> stage;  // stage[j]: fragments still to cut by shadow j
+    thread_local std::vector<Vec2> fragment;
+    if (stage.size() < S + 1) stage.resize(S + 1);
+    stage[0].swap(pieces);
+    for (std::size_t j = 1; j <= S; ++j) stage[j].clear();
+    double visible = 0;
+    std::size_t j = 0;
+    for (;;) {
+      while (stage[j].end.empty() && j > 0) --j;
+      Pieces& at = stage[j];
+      if (at.end.empty()) break;
+      const std::uint32_t end = at.end.back();
+      const std::uint32_t begin = at.end.size() > 1 ? at.end[at.end.size() - 2] : 0;
+      const double fragment_area = at.area.back();
+      fragment.assign(at.pts.begin() + begin, at.pts.begin() + end);
+      at.pts.resize(begin);
+      at.end.pop_back();
+      at.area.pop_back();
+      if (j == S) {
+        visible += fragment_area;
+        if (visible > area_margin) {
+          stage[0].swap(pieces);  // keep the buffers' capacity with this thread
+          return ShaftClass::partial;
+        }
+        continue;
+      }
+      const PlaneShadow& sh = *shadows[j];
+      subtract_convex_from_piece(fragment.data(), static_cast<int>(fragment.size()), fragment_area, sh.line_at.data(),
+                                 sh.line_in.data(), sh.lines, sh.lo, sh.hi, m, min_area, stage[j + 1]);
+      ++j;
+    }
+    stage[0].swap(pieces);
+    meeting.clear();
+    return ShaftClass::hidden;
+  }
+  for (const PlaneShadow* sh : shadows) {
+    if (pieces.end.empty()) break;
+    subtract_convex(pieces, sh->line_at.data(), sh->line_in.data(), sh->lines, sh->lo, sh->hi, m, min_area, other);
+    pieces.swap(other);
+  }
+  double area = 0;
+  for (const double a : pieces.area) area += a;
+  if (!(area > area_margin)) {
+    meeting.clear();
+    return ShaftClass::hidden;
+  }
+  if (part) Impl::write(plane.origin, plane.u, plane.w, pieces, area, *part);
   return ShaftClass::partial;
 }
 

@@ -58,13 +58,9 @@ void complete_shaft(Shaft& s);
 /// planes through P and tau's edges) up to the margin, or its plane passes through P (edge-on).
 bool may_meet(const FaceData& f, const Shaft& s);
 
-/// A convex polygon of tau's plane in the frame (u, w) at t[0], counter-clockwise. A face clipped
-/// by the shaft's 5 planes has at most 3 + 5 corners.
-struct Shadow {
-  std::array<Vec2, 8> p;
-  int n = 0;
-  double area = 0;
-};
+/// A convex polygon of tau's plane in the frame (u, w) at t[0], counter-clockwise (cast_shadow
+/// leaves its box unset).
+using Shadow = PlaneShadow;
 
 /// The shadow of the face on tau from P: the face clipped to the shaft, projected from P onto
 /// tau's plane. False when its area is at most s.area_margin (no shadow).
@@ -74,20 +70,49 @@ bool cast_shadow(const FaceData& f, const Shaft& s, Shadow& out);
 struct Pieces {
   std::vector<Vec2> pts;
   std::vector<std::uint32_t> end;
+  std::vector<double> area;  ///< polygon_area of each piece
   void clear() {
     pts.clear();
     end.clear();
+    area.clear();
+  }
+  void swap(Pieces& o) noexcept {
+    pts.swap(o.pts);
+    end.swap(o.end);
+    area.swap(o.area);
   }
 };
 
 /// tau in its frame, cut to the front of P's plane when it straddles it (at most 4 corners).
 void front_part_of_tau(const Shaft& s, Pieces& out);
 
-/// out = in minus the convex shadow, by successive splits along the shadow's edge lines: the part of
-/// a piece outside an edge's line is a piece of the difference, the part inside goes on to the next
-/// edge, and what is inside every edge is covered. Corners within `tol` of a line count as on it
-/// (no sliver pieces); pieces of area at most `min_area` are dropped.
-void subtract_convex(const Pieces& in, const Shadow& shadow, double tol, double min_area, Pieces& out);
+/// The triangle c (counter-clockwise) cut to the front of P's plane when it straddles it: tP are
+/// the signed distances of its corners from P's plane, affine along the triangle.
+void front_part(const std::array<Vec2, 3>& c, const std::array<double, 3>& tP, bool straddles, Pieces& out);
+
+/// The part of the convex polygon in[0, n) on the inner side (x - o).m >= 0 of a line
+/// (Sutherland-Hodgman) into out: at most n + 1 corners (n <= 11). Returns -1, out untouched, when
+/// the whole polygon is on the inner side, and 0 when no corner is farther inside than enter_tol
+/// (>= 0, in the units of (x - o).m).
+int clip_to_half_plane(const Vec2* in, int n, const Vec2& o, const Vec2& m, double enter_tol, Vec2* out);
+
+/// out = in minus the convex shadow poly[0, n) (counter-clockwise), by successive splits along the
+/// shadow's edge lines: the part of a piece outside an edge's line is a piece of the difference,
+/// the part inside goes on to the next edge, and what is inside every edge is covered. Corners
+/// within `tol` of a line count as on it (no sliver pieces); pieces of area at most `min_area` are
+/// dropped.
+void subtract_convex(const Pieces& in, const Vec2* poly, int n, double tol, double min_area, Pieces& out);
+
+/// The same with the shadow given by its edge lines longer than tol (a point line_at[j] and the
+/// unit normal line_in[j] towards the inside, in counter-clockwise order) and its box [slo, shi].
+void subtract_convex(const Pieces& in, const Vec2* line_at, const Vec2* line_in, int n_lines, const Vec2& slo,
+                     const Vec2& shi, double tol, double min_area, Pieces& out);
+
+/// One piece (corners piece[0, np), area piece_area) minus the shadow given by its edge lines, the
+/// pieces of the difference appended to out (subtract_convex does this for each piece of `in`).
+void subtract_convex_from_piece(const Vec2* piece, int np, double piece_area, const Vec2* line_at,
+                                const Vec2* line_in, int n_lines, const Vec2& slo, const Vec2& shi, double tol,
+                                double min_area, Pieces& out);
 
 double polygon_area(const Vec2* p, int n);
 

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace panelrad::geometry::occluder_detail {
 
@@ -86,7 +87,7 @@ int clip(const Vec3* in, int n, const Vec3& o, const Vec3& m, Vec3* out) {
   double dc = (in[0] - o).dot(m);
   for (int i = 0; i < n; ++i) {
     const Vec3& c = in[i];
-    const Vec3& x = in[(i + 1) % n];
+    const Vec3& x = in[i + 1 < n ? i + 1 : 0];
     const double dx = (x - o).dot(m);
     if (dc >= 0) out[k++] = c;
     if ((dc >= 0) != (dx >= 0)) out[k++] = c + (dc / (dc - dx)) * (x - c);
@@ -112,7 +113,7 @@ double polygon_area(const Vec2* p, int n) {
   double a = 0;
   for (int i = 0; i < n; ++i) {
     const Vec2& x = p[i];
-    const Vec2& y = p[(i + 1) % n];
+    const Vec2& y = p[i + 1 < n ? i + 1 : 0];
     a += x.x() * y.y() - x.y() * y.x();
   }
   return a / 2;
@@ -164,22 +165,48 @@ bool cast_shadow(const FaceData& f, const Shaft& s, Shadow& out) {
   return a > s.area_margin;
 }
 
-void front_part_of_tau(const Shaft& s, Pieces& out) {
+void front_part(const std::array<Vec2, 3>& c, const std::array<double, 3>& tP, bool straddles, Pieces& out) {
   out.clear();
-  const Vec3 e1 = s.t[1] - s.t[0], e2 = s.t[2] - s.t[0];
-  const std::array<Vec2, 3> c = {Vec2(0, 0), Vec2(e1.dot(s.u), e1.dot(s.w)), Vec2(e2.dot(s.u), e2.dot(s.w))};
-  if (!s.straddles) {
+  if (!straddles) {
     out.pts.assign(c.begin(), c.end());
   } else {
-    // The distance from P's plane is affine along tau: cut where it changes sign.
+    // The distance from P's plane is affine along the triangle: cut where it changes sign.
     for (int i = 0; i < 3; ++i) {
       const int j = (i + 1) % 3;
-      const double di = s.tP[i], dj = s.tP[j];
+      const double di = tP[i], dj = tP[j];
       if (di >= 0) out.pts.push_back(c[i]);
       if ((di >= 0) != (dj >= 0)) out.pts.push_back(c[i] + (di / (di - dj)) * (c[j] - c[i]));
     }
   }
   out.end.push_back(static_cast<std::uint32_t>(out.pts.size()));
+  out.area.push_back(polygon_area(out.pts.data(), static_cast<int>(out.pts.size())));
+}
+
+void front_part_of_tau(const Shaft& s, Pieces& out) {
+  const Vec3 e1 = s.t[1] - s.t[0], e2 = s.t[2] - s.t[0];
+  const std::array<Vec2, 3> c = {Vec2(0, 0), Vec2(e1.dot(s.u), e1.dot(s.w)), Vec2(e2.dot(s.u), e2.dot(s.w))};
+  front_part(c, s.tP, s.straddles, out);
+}
+
+int clip_to_half_plane(const Vec2* in, int n, const Vec2& o, const Vec2& m, double enter_tol, Vec2* out) {
+  std::array<double, 12> d;
+  bool all_in = true;
+  double d_max = -std::numeric_limits<double>::infinity();
+  for (int i = 0; i < n; ++i) {
+    d[i] = (in[i] - o).dot(m);
+    all_in = all_in && d[i] >= 0;
+    d_max = std::max(d_max, d[i]);
+  }
+  if (all_in) return -1;
+  if (d_max <= enter_tol) return 0;
+  int k = 0;
+  for (int i = 0; i < n; ++i) {
+    const int j = i + 1 < n ? i + 1 : 0;
+    const double dc = d[i], dx = d[j];
+    if (dc >= 0) out[k++] = in[i];
+    if ((dc >= 0) != (dx >= 0)) out[k++] = in[i] + (dc / (dc - dx)) * (in[j] - in[i]);
+  }
+  return k;
 }
 
 }  // namespace panelrad::geometry::occluder_detail

@@ -96,8 +96,11 @@ std::vector<Vec3> projected_to_floor(const Vec3& P, const Tri& t) {
 
 /// Checks the structure of a visible part: convex pieces, counter-clockwise about nQ, in tau's
 /// plane and inside tau, with `area` their total area. Corners are reconstructed from tau's frame:
-/// tolerances of 1e-12 times tau's size cover the rounding of that frame (~1e-16 relative).
-void expect_well_formed(const VisiblePart& part, const Tri& tau, const Vec3& nQ) {
+/// tolerances of 1e-12 times tau's size cover the rounding of that frame (~1e-16 relative). When
+/// they come from the frame of a larger triangle containing tau (frame_size its size), each corner
+/// carries a rounding of ~1e-16 frame_size: the area recomputed from them moves by at most the
+/// pieces' perimeters (a few times tau's size) times that, covered by 1e-14 frame_size size.
+void expect_well_formed(const VisiblePart& part, const Tri& tau, const Vec3& nQ, double frame_size = 0) {
   const Vec3 n = (tau[1] - tau[0]).cross(tau[2] - tau[0]).normalized() * ((tau[1] - tau[0]).cross(tau[2] - tau[0]).dot(nQ) > 0 ? 1 : -1);
   const double size = std::max({(tau[1] - tau[0]).norm(), (tau[2] - tau[1]).norm(), (tau[0] - tau[2]).norm()});
   double total = 0;
@@ -123,7 +126,7 @@ void expect_well_formed(const VisiblePart& part, const Tri& tau, const Vec3& nQ)
     begin = end;
   }
   EXPECT_EQ(begin, part.points.size());
-  EXPECT_NEAR(total, part.area, 1e-12 * area(tau));
+  EXPECT_NEAR(total, part.area, 1e-12 * area(tau) + 1e-14 * frame_size * size);
 }
 
 struct RandomConfig {
@@ -577,7 +580,193 @@ TEST(Occluders, ConcurrentQueriesGiveTheSerialResults) {
   EXPECT_GT(partial, 50);
 }
 
-// ---- 5. The ray test ----
+// ---- 5. Sub-triangles classified in 2-D against the shadows on their root's plane ----
+
+struct WithinStats {
+  int compared = 0, partial = 0, hidden = 0, full = 0, straddling = 0;
+};
+
+/// Walks the midpoint subdivision of the root of `plane` down `depth` levels as the fast operator
+/// does (partial sub-triangles refined, the shadows meeting them their children's candidates) and
+/// compares classify_within with classify on the same faces, and the visible area with the exact
+/// oracle when `oracle_shadows` is given.
+void walk_within(const Occluders& occ, const RandomConfig& c, const ShadowPlane& plane, const Tri& sub,
+                 std::span<const Index> among, int depth, const std::vector<std::vector<Vec3>>* oracle_shadows,
+                 double root_area, double root_size, WithinStats& stats) {
+  const Vec3 nQ(0, 0, 1);
+  std::vector<Index> meeting;
+  VisiblePart part;
+  const ShaftClass cls = occ.classify_within(plane, sub, among, meeting, &part);
+  // Without the visible part (the subtraction may stop early), the same class and meeting shadows.
+  std::vector<Index> meeting_class_only;
+  EXPECT_EQ(occ.classify_within(plane, sub, among, meeting_class_only), cls);
+  EXPECT_EQ(meeting_class_only, meeting);
+  std::vector<Index> faces, ref_meeting;
+  for (const Index k : among) faces.push_back(plane.faces[static_cast<std::size_t>(k)]);
+  VisiblePart ref;
+  const ShaftClass ref_cls = occ.classify(c.P, c.nP, sub, nQ, faces, ref_meeting, &ref);
+  ++stats.compared;
+  // Random scenes put no decision within the margins: the classes agree.
+  ASSERT_EQ(cls, ref_cls) << "sub-triangle at depth " << depth;
+  const double a = area(sub);
+  double visible = 0;
+  if (cls == ShaftClass::full) {
+    ++stats.full;
+    EXPECT_TRUE(part.points.empty());
+    visible = a;
+  } else if (cls == ShaftClass::hidden) {
+    ++stats.hidden;
+    EXPECT_TRUE(meeting.empty());
+  } else {
+    ++stats.partial;
+    // The same polygon differences computed in T's frame instead of sub's: rounding of the
+    // corners at 1e-16 of the scene's size, far below the area margin 1e-12 area(sub) of the
+    // rounding policy, which bounds what a decision within the margins may move.
+    EXPECT_NEAR(part.area, ref.area, 1e-12 * a);
+    expect_well_formed(part, sub, nQ, root_size);
+    visible = part.area;
+  }
+  if (cls != ShaftClass::hidden) {
+    std::vector<Index> meeting_faces;
+    for (const Index k : meeting) meeting_faces.push_back(plane.faces[static_cast<std::size_t>(k)]);
+    EXPECT_EQ(meeting_faces, ref_meeting) << "the shadows that meet sub are those of the faces that meet its shaft";
+  }
+  if (oracle_shadows) {
+    // As in the oracle test above: 1e-12 of the root's area bounds the oracle's rounding.
+    EXPECT_NEAR(visible, oracle_visible_area(sub, *oracle_shadows), 1e-12 * root_area);
+  }
+  if (cls != ShaftClass::partial || depth == 0) return;
+  for (const Tri& child : midpoint_children(sub))
+    walk_within(occ, c, plane, child, meeting, depth - 1, oracle_shadows, root_area, root_size, stats);
+}
+
+TEST(Occluders, SubTrianglesClassifiedInTheRootsPlaneAgreeWithTheirShafts) {
+  std::mt19937_64 rng(31337);
+  std::uniform_real_distribution<double> u01(0, 1);
+  const Vec3 nQ(0, 0, 1);
+  WithinStats stats;
+  for (int trial = 0; trial < 80; ++trial) {
+    RandomConfig c = random_config(rng);
+    // Every other scene tilts P's plane so that it cuts the floor through tau (straddling roots
+    // and sub-triangles); the oracle's floor shadows then no longer apply.
+    const bool tilted = trial % 2 == 1;
+    if (tilted) {
+      // P's plane through P and an interior point X of tau, containing the horizontal direction
+      // normal to X - P; its front side chosen at random.
+      const double w0 = 0.2 + 0.6 * u01(rng), w1 = 0.2 + 0.6 * u01(rng), w2 = 0.2 + 0.6 * u01(rng);
+      const Vec3 X = (w0 * c.tau[0] + w1 * c.tau[1] + w2 * c.tau[2]) / (w0 + w1 + w2);
+      const Vec3 e = X - c.P;
+      c.nP = e.cross(Vec3(-e.y(), e.x(), 0)).normalized() * (u01(rng) < 0.5 ? 1 : -1);
+    }
+    std::vector<Tri> tris = {c.tau};
+    tris.insert(tris.end(), c.blockers.begin(), c.blockers.end());
+    const Occluders occ(mesh_of(tris));
+    std::vector<std::vector<Vec3>> shadows;
+    for (const Tri& b : c.blockers) shadows.push_back(projected_to_floor(c.P, b));
+
+    std::vector<Index> among, meeting;
+    occ.candidates(c.P, c.nP, c.tau, nQ, among);
+    ShadowPlane plane;
+    VisiblePart part, ref;
+    const ShaftClass cls = occ.classify(c.P, c.nP, c.tau, nQ, among, plane, &part);
+    // The root's class, shadows and visible part are classify's, bit for bit.
+    ASSERT_EQ(cls, occ.classify(c.P, c.nP, c.tau, nQ, among, meeting, &ref));
+    EXPECT_EQ(plane.faces, meeting);
+    EXPECT_EQ(part.points, ref.points);
+    EXPECT_EQ(part.area, ref.area);
+    if (cls != ShaftClass::partial) continue;
+    std::vector<Index> all(plane.shadows.size());
+    std::iota(all.begin(), all.end(), 0);
+    const double tP_lo = std::min({(c.tau[0] - c.P).dot(c.nP), (c.tau[1] - c.P).dot(c.nP), (c.tau[2] - c.P).dot(c.nP)});
+    stats.straddling += tP_lo < 0 ? 1 : 0;
+    for (Tri child : midpoint_children(c.tau)) {
+      if (trial % 4 == 2) std::swap(child[1], child[2]);  // either orientation of a sub-triangle
+      const double root_size =
+          std::max({(c.tau[1] - c.tau[0]).norm(), (c.tau[2] - c.tau[1]).norm(), (c.tau[0] - c.tau[2]).norm()});
+      walk_within(occ, c, plane, child, all, 3, tilted ? nullptr : &shadows, area(c.tau), root_size, stats);
+    }
+  }
+  EXPECT_GT(stats.partial, 400);
+  EXPECT_GT(stats.hidden, 100);
+  EXPECT_GT(stats.full, 100);
+  EXPECT_GT(stats.straddling, 10) << "P's plane should cut some roots";
+}
+
+TEST(Occluders, SubTrianglesOfAHiddenOrFullRootAndBadShadowIndices) {
+  // A floor triangle under a square blocker: P above the blocker's middle.
+  const Tri tau = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+  std::vector<Tri> tris = {tau};
+  for (const Tri& t : horizontal_rectangle(0.2, 0.4, 0.2, 0.4, 0.5)) tris.push_back(t);
+  const Occluders occ(mesh_of(tris));
+  const Vec3 P(0.3, 0.3, 1), down(0, 0, -1), up(0, 0, 1);
+  ShadowPlane plane;
+  std::vector<Index> among, meeting;
+  occ.candidates(P, down, tau, up, among);
+  ASSERT_EQ(occ.classify(P, down, tau, up, among, plane), ShaftClass::partial);
+  ASSERT_EQ(plane.shadows.size(), 2u);
+  const std::vector<Index> both = {0, 1};
+  // The blocker's shadow is the square [0.1, 0.5]^2 (magnification 2 about (0.3, 0.3)).
+  const Tri inside = {Vec3(0.15, 0.15, 0), Vec3(0.45, 0.15, 0), Vec3(0.15, 0.45, 0)};
+  const Tri outside = {Vec3(0.6, 0.05, 0), Vec3(0.9, 0.05, 0), Vec3(0.6, 0.3, 0)};
+  const Tri across = {Vec3(0.3, 0.3, 0), Vec3(0.7, 0.3, 0), Vec3(0.3, 0.6, 0)};
+  EXPECT_EQ(occ.classify_within(plane, inside, both, meeting), ShaftClass::hidden);
+  EXPECT_TRUE(meeting.empty());
+  EXPECT_EQ(occ.classify_within(plane, outside, both, meeting), ShaftClass::full);
+  EXPECT_TRUE(meeting.empty());
+  VisiblePart part;
+  EXPECT_EQ(occ.classify_within(plane, across, both, meeting, &part), ShaftClass::partial);
+  // across = right triangle with legs 0.4 and 0.3 at (0.3, 0.3); the shadow covers its part in
+  // [0.3, 0.5]^2, which lies below the hypotenuse x/0.4 + y/0.3 = 1 (shifted) except the corner
+  // region beyond it: by the exact oracle.
+  EXPECT_NEAR(part.area, oracle_visible_area(across, {projected_to_floor(P, tris[1]), projected_to_floor(P, tris[2])}),
+              1e-14);
+  expect_well_formed(part, across, up);
+  const std::vector<Index> bad = {2};
+  EXPECT_THROW(occ.classify_within(plane, across, bad, meeting), std::invalid_argument);
+  // Seen from below the floor, the root is hidden by the plane tests, and so is every sub-triangle.
+  ShadowPlane below;
+  EXPECT_EQ(occ.classify(Vec3(0.3, 0.3, -1), up, tau, up, among, below), ShaftClass::hidden);
+  EXPECT_FALSE(below.seen);
+  EXPECT_EQ(occ.classify_within(below, inside, {}, meeting), ShaftClass::hidden);
+}
+
+TEST(Occluders, ConcurrentSubTriangleClassificationsGiveTheSerialResults) {
+  std::mt19937_64 rng(8);
+  std::vector<RandomConfig> configs;
+  for (int i = 0; i < 64; ++i) configs.push_back(random_config(rng));
+  const Vec3 nQ(0, 0, 1);
+  const auto run = [&](const RandomConfig& c, std::vector<double>& out) {
+    std::vector<Tri> tris = {c.tau};
+    tris.insert(tris.end(), c.blockers.begin(), c.blockers.end());
+    const Occluders occ(mesh_of(tris));
+    std::vector<Index> among, meeting;
+    occ.candidates(c.P, c.nP, c.tau, nQ, among);
+    ShadowPlane plane;
+    occ.classify(c.P, c.nP, c.tau, nQ, among, plane);
+    std::vector<Index> all(plane.shadows.size());
+    std::iota(all.begin(), all.end(), 0);
+    std::vector<Tri> level = {c.tau};
+    for (int d = 0; d < 3; ++d) {
+      std::vector<Tri> next;
+      for (const Tri& t : level)
+        for (const Tri& child : midpoint_children(t)) next.push_back(child);
+      level = next;
+    }
+    VisiblePart part;
+    for (const Tri& t : level) {
+      const ShaftClass cls = occ.classify_within(plane, t, all, meeting, &part);
+      out.push_back(static_cast<double>(cls));
+      out.push_back(part.area);
+      out.push_back(static_cast<double>(meeting.size()));
+    }
+  };
+  std::vector<std::vector<double>> serial(configs.size()), parallel(configs.size());
+  for (std::size_t k = 0; k < configs.size(); ++k) run(configs[k], serial[k]);
+  parallel_for(configs.size(), [&](std::size_t k) { run(configs[k], parallel[k]); }, 1);
+  for (std::size_t k = 0; k < configs.size(); ++k) EXPECT_EQ(parallel[k], serial[k]) << k;
+}
+
+// ---- 6. The ray test ----
 
 TEST(Occluders, RayIsBlockedOnlyByACrossingOfAFacesInterior) {
   const Occluders occ(mesh_of({Tri{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)},

@@ -8,6 +8,10 @@
 //   partial  -> refined, the faces that meet its shaft becoming its children's candidates; at
 //               the elements the exact integral over the visible part: the closed-form
 //               point-to-polygon form factor of each convex piece.
+// A cluster is a sub-triangle of its level-0 root (the midpoint subdivision), in the root's plane:
+// the shadows are cast once per (P, root) in 3-D (Occluders::classify with a ShadowPlane), and the
+// clusters below the root are classified in 2-D against them (Occluders::classify_within), the
+// candidates of a cluster being the root shadows that meet its parent.
 // With eta = 0 nothing is admissible: the walk gives every element's entry of the row, the dense
 // matrix (33) with visibility. Private to lib/src/operator.
 #include <panelrad/geometry/admissibility.hpp>
@@ -49,8 +53,9 @@ struct VisibleCoveringScratch {
     bool known_full;                     // an ancestor was fully visible
   };
   std::vector<Item> stack;
-  std::vector<geometry::Index> pool, meeting;
+  std::vector<geometry::Index> pool, meeting;  // candidate faces of a root; below it, indices of plane.shadows
   geometry::VisiblePart part;
+  geometry::ShadowPlane plane;  // the root being walked (depth first: its subtree before the next root)
 };
 
 /// Walks the tree for collocation point P (inner normal nP): far(level, k) for the admissible,
@@ -75,15 +80,14 @@ void cover_visible(const geometry::ClusterTree& tree, const geometry::Occluders&
     if (!it.known_full) {
       if (it.level == 0) {
         occluders.candidates(P, nP, c.vertex, c.normal, s.meeting);
-        const std::size_t begin = s.pool.size();
-        s.pool.insert(s.pool.end(), s.meeting.begin(), s.meeting.end());
-        cls = occluders.classify(P, nP, c.vertex, c.normal,
-                                 std::span<const Index>(s.pool.data() + begin, s.pool.size() - begin), s.meeting,
-                                 it.level == L ? &s.part : nullptr);
+        cls = occluders.classify(P, nP, c.vertex, c.normal, s.meeting, s.plane, it.level == L ? &s.part : nullptr);
+        // The root's children meet at most the shadows cast on the root.
+        s.meeting.resize(s.plane.shadows.size());
+        for (std::size_t j = 0; j < s.meeting.size(); ++j) s.meeting[j] = static_cast<Index>(j);
       } else {
-        cls = occluders.classify(P, nP, c.vertex, c.normal,
-                                 std::span<const Index>(s.pool.data() + it.among_begin, it.among_end - it.among_begin),
-                                 s.meeting, it.level == L ? &s.part : nullptr);
+        cls = occluders.classify_within(
+            s.plane, c.vertex, std::span<const Index>(s.pool.data() + it.among_begin, it.among_end - it.among_begin),
+            s.meeting, it.level == L ? &s.part : nullptr);
       }
       if (cls == ShaftClass::full) ++counts.visible;
       else if (cls == ShaftClass::hidden) ++counts.hidden;

@@ -30,6 +30,8 @@
 // predicates are not needed for a bounded quantity of that size.
 #include <panelrad/geometry/mesh.hpp>
 
+#include <Eigen/Core>
+
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -60,6 +62,33 @@ struct VisiblePart {
     piece_end.clear();
     area = 0;
   }
+};
+
+/// A convex polygon of a plane, counter-clockwise in the plane's frame (ShadowPlane): the shadow one
+/// face casts on a triangle from P (the face clipped to the shaft conv(P, tau), projected centrally
+/// from P onto tau's plane). A triangle clipped by the shaft's 5 planes keeps at most 3 + 5 corners.
+struct PlaneShadow {
+  std::array<Eigen::Vector2d, 8> p;
+  int n = 0;
+  double area = 0;
+  Eigen::Vector2d lo, hi;  ///< bounding box of the corners
+  /// The edge lines longer than the distance margin: a point and the unit normal towards the inside.
+  std::array<Eigen::Vector2d, 8> line_at, line_in;
+  int lines = 0;
+};
+
+/// P and the plane of a triangle T seen from it, with the shadows the occluders cast on T: what the
+/// classification of T's sub-triangles shares (Occluders::classify_within). A sub-triangle tau of
+/// T lies in T's plane, so the central projection from P maps the planes of tau's shaft through P
+/// and tau's edges onto tau's edge lines: the shadow a face casts on tau (the face clipped to
+/// conv(P, tau), projected) is its shadow on T clipped to tau, a 2-D clip in T's frame.
+struct ShadowPlane {
+  Vec3 P, nP;                         ///< the point and the unit normal of its plane
+  Vec3 origin, u, w, nQ;              ///< T's first corner, the frame (u, w, nQ) of T's plane, nQ T's unit front normal
+  double height = 0;                  ///< distance of P from T's plane
+  bool seen = false;                  ///< false: T is hidden by the plane tests alone, and so is every sub-triangle
+  std::vector<PlaneShadow> shadows;   ///< the shadows on T of the faces that meet T's shaft
+  std::vector<Index> faces;           ///< the face of each shadow (in the order of the candidates)
 };
 
 /// The scene's faces as occluders, with the queries of the fast product and of the dense reference.
@@ -96,6 +125,26 @@ class Occluders {
   /// (as visible_part); otherwise it is left cleared.
   ShaftClass classify(const Vec3& P, const Vec3& nP, const std::array<Vec3, 3>& tau, const Vec3& nQ,
                       std::span<const Index> among, std::vector<Index>& meeting, VisiblePart* part = nullptr) const;
+
+  /// classify, which also sets up `plane` for tau's sub-triangles (classify_within): tau's frame and
+  /// the shadows of the faces of `among` that meet tau's shaft (those classify puts in `meeting`).
+  /// The class and the visible part are those of classify, bit for bit.
+  ShaftClass classify(const Vec3& P, const Vec3& nP, const std::array<Vec3, 3>& tau, const Vec3& nQ,
+                      std::span<const Index> among, ShadowPlane& plane, VisiblePart* part = nullptr) const;
+
+  /// Classifies a sub-triangle `sub` of the triangle T of `plane` (in T's plane, inside T, facing
+  /// T's nQ; its distance from the plane is not looked at) as seen from plane.P, in 2-D: `among`
+  /// are indices of plane.shadows (those that meet a triangle containing sub), and `meeting` is
+  /// replaced by those that meet sub (in the order of `among`; empty when sub is hidden): the
+  /// candidates of sub's sub-triangles. A shadow meets sub when its part inside sub has an area
+  /// above the area margin (as the shadow of the face clipped to sub's shaft in classify); sub is
+  /// hidden as soon as its corners are inside every edge line of one shadow (by the distance
+  /// margin, as in the subtraction of the shadows). The class and the
+  /// visible part are those of classify with the faces of `among` up to rounding, and the
+  /// decisions up to the margins of the rounding policy; the visible part's corners are computed
+  /// in T's frame.
+  ShaftClass classify_within(const ShadowPlane& plane, const std::array<Vec3, 3>& sub, std::span<const Index> among,
+                             std::vector<Index>& meeting, VisiblePart* part = nullptr) const;
 
   /// The part of tau that P sees: tau clipped to the front of P's plane, minus the shadows cast
   /// from P by the occluders `among` (central projection from P onto tau's plane of each face
