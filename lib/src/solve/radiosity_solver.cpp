@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 
 namespace panelrad {
@@ -146,8 +147,9 @@ std::unique_ptr<RadiosityOperator> RadiositySolver::make(const Collocation& rows
 // instead (FastOptions::probe_samples: an operator covering only the self-check's sampled rows,
 // whose check equals the whole operator's bit for bit) and the operator is built once: with the
 // first setting when its check passes, else with the stricter_settings whose check passes at the
-// least product work (far pairs x Taylor terms + near pairs over the probed rows); when none
-// passes, the one with the smallest check.
+// least product work (far pairs x Taylor terms + near pairs over the probed rows; a setting whose
+// work is not below the cheapest passing one's so far is not checked); when none passes, the one
+// with the smallest check.
 void RadiositySolver::choose_by_probes(const Collocation& rows, OperatorOptions& op) {
   FastOptions base;
   base.near = op.near;
@@ -159,27 +161,37 @@ void RadiositySolver::choose_by_probes(const Collocation& rows, OperatorOptions&
     double work = 0;
   };
   std::optional<FastSelfCheckReference> reference;
-  const auto trial = [&](const OperatorOptions& o) {
+  // The probe of setting o; its check is skipped (+inf) when its work is not below `bound`.
+  const auto trial = [&](const OperatorOptions& o, double bound) {
     FastOptions f = base;
     static_cast<ClusteringParameters&>(f) = o;
     stage_ = "probing the setting " + describe_parameters(o) + " on the self-check's rows";
     const FastOperator probe(rows, f);
-    if (!reference) reference = probe.self_check_reference(kSelfCheckSamples);
-    Trial t{o, probe.self_check(*reference), 0};
     const FastStatistics& stats = probe.statistics();
-    t.work = static_cast<double>(stats.far_pairs) * num_taylor_terms(o.degree) + static_cast<double>(stats.near_pairs);
+    Trial t{o, {}, static_cast<double>(stats.far_pairs) * num_taylor_terms(o.degree) + static_cast<double>(stats.near_pairs)};
+    if (!(t.work < bound)) {
+      const double rows_probed = static_cast<double>(std::max<std::size_t>(1, reference->rows.size()));
+      t.check.relative_error = std::numeric_limits<double>::infinity();
+      say("probe, " + describe_parameters(o) + fmt(": product work %.3g per sampled row, not below the cheapest passing "
+                                                   "setting's: not checked", t.work / rows_probed));
+      return t;
+    }
+    if (!reference) reference = probe.self_check_reference(kSelfCheckSamples);
+    t.check = probe.self_check(*reference);
+    const double rows_probed = static_cast<double>(std::max(1, t.check.rows));
     say("probe, " + describe_parameters(o) + fmt(": self-check %.2e, product work %.3g per sampled row", t.check.relative_error,
-                                                 t.work / std::max(1, t.check.rows)));
+                                                 t.work / rows_probed));
     return t;
   };
+  const double unbounded = std::numeric_limits<double>::infinity();
   const double threshold = info_.self_check_threshold;
-  Trial chosen = trial(op);
+  Trial chosen = trial(op, unbounded);
   if (!(chosen.check.relative_error <= threshold)) {
     say(fmt("self-check %.2e above %.2e: probing stricter settings", chosen.check.relative_error, threshold));
     std::optional<Trial> best_passing;
     Trial smallest = chosen;
     for (const OperatorOptions& o : stricter_settings(op)) {
-      Trial t = trial(o);
+      Trial t = trial(o, best_passing ? best_passing->work : unbounded);
       if (t.check.relative_error <= threshold) {
         if (!best_passing || t.work < best_passing->work) best_passing = t;
       } else if (t.check.relative_error < smallest.check.relative_error) {
