@@ -234,8 +234,17 @@ TEST(OccludedConvex, ConvexScenesSkipVisibilityAndComputingItChangesNothing) {
   // entry classified partly visible by the margin is the sum of its pieces' closed forms.
   EXPECT_LT((a - b).cwiseAbs().maxCoeff(), 1e-14);
 
-  const auto fast_plain = make_operator(col, fast_options(0.5, 6), Visibility::unoccluded);
-  const auto fast_seen = make_operator(col, fast_options(0.5, 6), Visibility::occluded);
+  // The fast operator with and without the occluders, both storing double coefficients (the
+  // factory stores single precision with V: single_precision_far_field), so that any difference
+  // is the classification's.
+  FastOptions f;
+  f.eta = 0.5;
+  f.degree = 6;
+  const auto fast_plain = std::make_unique<FastOperator>(col, f);
+  f.occluders = scene_occluders(col.tree());
+  const auto fast_seen = std::make_unique<FastOperator>(col, f);
+  EXPECT_TRUE(single_precision_far_field(Visibility::occluded));
+  EXPECT_FALSE(single_precision_far_field(Visibility::unoccluded));
   Eigen::VectorXd v(col.size()), y0, y1;
   for (Index i = 0; i < col.size(); ++i) v[i] = std::cos(3.0 * col.collocation_point(i).x()) + 2;
   fast_plain->apply(v, y0);

@@ -135,6 +135,7 @@ TEST(ChannelsTogether, OccludedSettingChosenOnProbes) {
     FastOptions f;
     static_cast<ClusteringParameters&>(f) = s;
     f.occluders = fast.options().occluders;
+    f.single_precision_coefficients = fast.options().single_precision_coefficients;
     f.probe_samples = RadiositySolver::kSelfCheckSamples;
     const Collocation rows = solver.collocation().with_row_weights(Eigen::VectorXd::Ones(solver.n()));
     const FastOperator probe(rows, f);

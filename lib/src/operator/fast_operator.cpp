@@ -294,7 +294,7 @@ void FastOperator::store_coverings(std::vector<RowBlock>& blocks) {
   }
   stats_.near_pairs = static_cast<std::size_t>(near_start_.back());
   stats_.far_pairs = static_cast<std::size_t>(far_start_.back());
-  const std::size_t far_coef_bytes = stats_.far_pairs * static_cast<std::size_t>(terms_) * sizeof(double);
+  const std::size_t far_coef_bytes = stats_.far_pairs * static_cast<std::size_t>(terms_) * coefficient_bytes();
   const std::size_t avail = available_memory_bytes();
   const std::size_t limit = options_.far_storage_limit ? options_.far_storage_limit : avail / 2;
   stats_.far_stored = far_coef_bytes <= limit;
@@ -312,28 +312,43 @@ void FastOperator::store_coverings(std::vector<RowBlock>& blocks) {
   }
 }
 
-// The rho-scaled Taylor coefficients (44)-(45) of every far pair, when they are to be stored.
+// The rho-scaled Taylor coefficients (44)-(45) of every far pair, when they are to be stored
+// (rounded to float with single_precision_coefficients).
 void FastOperator::setup_far_coefficients() {
   const std::size_t T = static_cast<std::size_t>(terms_);
+  const bool single = options_.single_precision_coefficients;
   if (stats_.far_stored) {
     try {
-      far_coef_ = LargeBuffer(stats_.far_pairs * T);
+      if (single) far_coef_single_ = LargeArray<float>(stats_.far_pairs * T);
+      else far_coef_ = LargeBuffer(stats_.far_pairs * T);
     } catch (const std::bad_alloc&) {
       stats_.far_stored = false;  // could not have the memory after all: recompute per product
     }
   }
   if (!stats_.far_stored) return;
   const Index rows = row_end_ - row_begin_;
-#pragma omp parallel for schedule(dynamic, 64)
-  for (Index r = 0; r < rows; ++r)
-    for (std::int64_t j = far_start_[static_cast<std::size_t>(r)]; j < far_start_[static_cast<std::size_t>(r) + 1]; ++j)
-      far_coefficients(row_begin_ + r, far_cluster_[static_cast<std::size_t>(j)], &far_coef_[static_cast<std::size_t>(j) * T]);
+#pragma omp parallel
+  {
+    std::vector<double> c(T);
+#pragma omp for schedule(dynamic, 64)
+    for (Index r = 0; r < rows; ++r)
+      for (std::int64_t j = far_start_[static_cast<std::size_t>(r)]; j < far_start_[static_cast<std::size_t>(r) + 1]; ++j) {
+        const Index cluster = far_cluster_[static_cast<std::size_t>(j)];
+        const std::size_t at = static_cast<std::size_t>(j) * T;
+        if (!single) {
+          far_coefficients(row_begin_ + r, cluster, &far_coef_[at]);
+          continue;
+        }
+        far_coefficients(row_begin_ + r, cluster, c.data());
+        for (std::size_t t = 0; t < T; ++t) far_coef_single_[at + t] = static_cast<float>(c[t]);
+      }
+  }
 }
 
 std::size_t FastOperator::held_bytes() const {
   const std::size_t num_clusters = static_cast<std::size_t>(level_offset_.back());
   return near_col_.size() * sizeof(Index) + near_val_.size() * sizeof(double) + far_cluster_.size() * sizeof(Index) +
-         far_coef_.bytes() + (near_start_.size() + far_start_.size()) * sizeof(std::int64_t) +
+         far_coef_.bytes() + far_coef_single_.bytes() + (near_start_.size() + far_start_.size()) * sizeof(std::int64_t) +
          frame_.size() * sizeof(PlaneFrame) + to_parent_.size() * sizeof(to_parent_[0]) +
          element_moments_.size() * sizeof(double) +
          num_clusters * static_cast<std::size_t>(terms_) * sizeof(double) /* moments per product */;
@@ -424,6 +439,27 @@ void FastOperator::compute_moments(const Eigen::VectorXd& v, std::vector<double>
   }
 }
 
+namespace {
+
+// sum[c] += sum_t coef[t] m[t C + c], (47), t in order for every column c; the coefficients in
+// double or single precision (widened exactly to double before the product).
+template <int C, class Coef>
+inline void add_far_terms(const Coef* coef, const double* m, std::size_t T, double* sum) {
+  if constexpr (C % 2 == 0) {
+    // Packets of columns (Eigen's SIMD arithmetic is the scalar IEEE arithmetic, lane by lane).
+    using Packet = Eigen::Array<double, C, 1>;
+    Packet acc = Eigen::Map<const Packet>(sum);
+    for (std::size_t t = 0; t < T; ++t) acc += static_cast<double>(coef[t]) * Eigen::Map<const Packet>(m + t * C);
+    Eigen::Map<Packet> sums(sum);
+    sums = acc;
+  } else {
+    for (std::size_t t = 0; t < T; ++t)
+      for (int c = 0; c < C; ++c) sum[c] += static_cast<double>(coef[t]) * m[t * C + c];
+  }
+}
+
+}  // namespace
+
 // Row i (held) of the fast product (43) for C vectors, from their cluster moments: near field plus
 // far field (47). v and moments hold the C columns interleaved (entry j of column c at j C + c), so
 // that the C sums advance together, in SIMD registers where the compiler can. Each column's sum
@@ -444,24 +480,14 @@ void FastOperator::apply_row_columns(Index i, const double* v, const double* mom
   }
   for (std::int64_t j = far_start_[r]; j < far_start_[r + 1]; ++j) {
     const Index cl = far_cluster_[static_cast<std::size_t>(j)];
-    const double* coef;
-    if (stats_.far_stored) {
-      coef = &far_coef_[static_cast<std::size_t>(j) * T];
-    } else {
-      far_coefficients(i, cl, scratch);
-      coef = scratch;
-    }
     const double* m = moments + static_cast<std::size_t>(cl) * T * C;
-    if constexpr (C % 2 == 0) {
-      // Packets of columns (Eigen's SIMD arithmetic is the scalar IEEE arithmetic, lane by lane).
-      using Packet = Eigen::Array<double, C, 1>;
-      Packet acc = Eigen::Map<const Packet>(sum);
-      for (std::size_t t = 0; t < T; ++t) acc += coef[t] * Eigen::Map<const Packet>(m + t * C);  // (47)
-      Eigen::Map<Packet> sums(sum);
-      sums = acc;
+    if (!stats_.far_stored) {
+      far_coefficients(i, cl, scratch);
+      add_far_terms<C>(scratch, m, T, sum);
+    } else if (options_.single_precision_coefficients) {
+      add_far_terms<C>(&far_coef_single_[static_cast<std::size_t>(j) * T], m, T, sum);
     } else {
-      for (std::size_t t = 0; t < T; ++t)
-        for (int c = 0; c < C; ++c) sum[c] += coef[t] * m[t * C + c];  // (47)
+      add_far_terms<C>(&far_coef_[static_cast<std::size_t>(j) * T], m, T, sum);
     }
   }
   for (int c = 0; c < C; ++c) out[c] = sum[c];

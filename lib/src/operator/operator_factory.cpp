@@ -73,6 +73,8 @@ std::shared_ptr<const geometry::Occluders> scene_occluders(const geometry::Clust
   return std::make_shared<const geometry::Occluders>(faces);
 }
 
+bool single_precision_far_field(Visibility visibility) { return visibility == Visibility::occluded; }
+
 std::unique_ptr<RadiosityOperator> make_operator(const Collocation& collocation, const OperatorOptions& options,
                                                  Visibility visibility, const SetupProgress& progress) {
   // unoccluded: V = 1, exact on a convex surface (operator_factory.hpp); both operators integrate
@@ -94,6 +96,7 @@ std::unique_ptr<RadiosityOperator> make_operator(const Collocation& collocation,
       fast.near = options.near;
       fast.progress = progress;
       fast.occluders = occluders;
+      fast.single_precision_coefficients = single_precision_far_field(visibility);
       return std::make_unique<FastOperator>(collocation, fast);
     }
     case OperatorMethod::automatic: break;

@@ -155,6 +155,7 @@ void RadiositySolver::choose_by_probes(const Collocation& rows, OperatorOptions&
   base.near = op.near;
   base.occluders = scene_occluders(rows.tree());
   base.probe_samples = kSelfCheckSamples;
+  base.single_precision_coefficients = single_precision_far_field(Visibility::occluded);  // as make() will
   struct Trial {
     OperatorOptions options;
     FastSelfCheck check;

@@ -5,20 +5,19 @@
 #include <cstdlib>
 #include <new>
 
-namespace panelrad {
+namespace panelrad::large_buffer_detail {
 
-void LargeBuffer::Free::operator()(double* p) const { std::free(p); }
-
-LargeBuffer::LargeBuffer(std::size_t count) : size_(count) {
-  if (count == 0) return;
+void* allocate(std::size_t bytes) {
   constexpr std::size_t kHugePage = std::size_t{2} << 20;
-  const std::size_t bytes = (count * sizeof(double) + kHugePage - 1) / kHugePage * kHugePage;
+  const std::size_t rounded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
   void* p = nullptr;
-  if (posix_memalign(&p, kHugePage, bytes) != 0 || p == nullptr) throw std::bad_alloc();
+  if (posix_memalign(&p, kHugePage, rounded) != 0 || p == nullptr) throw std::bad_alloc();
 #ifdef MADV_HUGEPAGE
-  (void)madvise(p, bytes, MADV_HUGEPAGE);  // advice only: fine if the kernel declines
+  (void)madvise(p, rounded, MADV_HUGEPAGE);  // advice only: fine if the kernel declines
 #endif
-  data_.reset(static_cast<double*>(p));
+  return p;
 }
 
-}  // namespace panelrad
+void release(void* p) { std::free(p); }
+
+}  // namespace panelrad::large_buffer_detail

@@ -64,6 +64,15 @@ using SetupProgress = std::function<void(const std::string&)>;
 /// oriented input triangles; refinement adds no face).
 std::shared_ptr<const geometry::Occluders> scene_occluders(const geometry::ClusterTree& tree);
 
+/// Whether make_operator's fast operator stores its far coefficients in single precision
+/// (FastOptions::single_precision_coefficients): when V is computed. A covering with V is
+/// refined along every shadow, so it holds several times the far pairs per row of a convex
+/// surface of the same n (bench/visibility: 2.9x on the Cornell box at n = 49,152), and writing
+/// and reading them dominate its setup and products; the rounding, 6e-8 per coefficient, stays
+/// two orders below the self-check's thresholds and is measured by it. Unoccluded (convex
+/// scenes, the paper's setting): double, as always.
+bool single_precision_far_field(Visibility visibility);
+
 /// The operator with rows weighted by the collocation's reflectivity (33):
 /// (K_n v)_i = rho(P_i)/pi Int_S v G(P_i, Q) V(P_i, Q) dS_Q. options.method automatic and
 /// visibility automatic are std::invalid_argument (the solver resolves them). With occluded, the

@@ -1,30 +1,43 @@
 #pragma once
-// A large array of doubles for operator data (gigabytes at n ~ 2e5): allocated uninitialized,
+// A large array of numbers for operator data (gigabytes at n ~ 2e5): allocated uninitialized,
 // aligned to 2 MiB and advised to use transparent huge pages (one page fault per 2 MiB instead
 // of per 4 KiB, which dominates setup in virtual machines), and first touched by the threads that
 // fill it. Throws std::bad_alloc when the memory cannot be had.
 #include <cstddef>
 #include <memory>
+#include <type_traits>
 
 namespace panelrad {
 
-class LargeBuffer {
+namespace large_buffer_detail {
+void* allocate(std::size_t bytes);  ///< 2 MiB aligned, huge pages advised; std::bad_alloc on failure
+void release(void* p);
+}  // namespace large_buffer_detail
+
+template <class T>
+class LargeArray {
+  static_assert(std::is_trivially_copyable_v<T>, "LargeArray holds plain numbers, left uninitialized");
+
  public:
-  LargeBuffer() = default;
-  explicit LargeBuffer(std::size_t count);
-  double* data() { return data_.get(); }
-  const double* data() const { return data_.get(); }
+  LargeArray() = default;
+  explicit LargeArray(std::size_t count) : size_(count) {
+    if (count) data_.reset(static_cast<T*>(large_buffer_detail::allocate(count * sizeof(T))));
+  }
+  T* data() { return data_.get(); }
+  const T* data() const { return data_.get(); }
   std::size_t size() const { return size_; }
-  std::size_t bytes() const { return size_ * sizeof(double); }
-  double& operator[](std::size_t i) { return data_[i]; }
-  const double& operator[](std::size_t i) const { return data_[i]; }
+  std::size_t bytes() const { return size_ * sizeof(T); }
+  T& operator[](std::size_t i) { return data_[i]; }
+  const T& operator[](std::size_t i) const { return data_[i]; }
 
  private:
   struct Free {
-    void operator()(double* p) const;
+    void operator()(T* p) const { large_buffer_detail::release(p); }
   };
-  std::unique_ptr<double[], Free> data_;
+  std::unique_ptr<T[], Free> data_;
   std::size_t size_ = 0;
 };
+
+using LargeBuffer = LargeArray<double>;
 
 }  // namespace panelrad
