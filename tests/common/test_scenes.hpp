@@ -1,7 +1,9 @@
 #pragma once
-// Scenes with data for the operator and solver tests: a built-in convex solid, or a general
-// (non-convex) mesh after validate_scene, with rho and E the same on every facet.
+// Scenes with data for the operator and solver tests (a built-in convex solid, or a general
+// (non-convex) mesh after validate_scene, with rho and E the same on every facet), and operator
+// options.
 #include <panelrad/geometry/scene_validation.hpp>
+#include <panelrad/operator/operator_factory.hpp>
 #include <panelrad/scene/scene.hpp>
 
 #include "validated_meshes.hpp"
@@ -35,6 +37,15 @@ inline Scene general_scene(geometry::TriangleMesh mesh, std::vector<std::string>
     scene.set_emissivity(E, c);
   }
   return scene;
+}
+
+/// The fast operator (section 4) with admissibility eta (41) and Taylor degree M (44).
+inline OperatorOptions fast_options(double eta, int degree) {
+  OperatorOptions o;
+  o.method = OperatorMethod::fast;
+  o.eta = eta;
+  o.degree = degree;
+  return o;
 }
 
 }  // namespace panelrad::testing

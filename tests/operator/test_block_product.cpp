@@ -48,18 +48,10 @@ void expect_columns_bit_identical(const RadiosityOperator& op, Index columns) {
 
 Scene room_scene() { return testing::general_scene(testing::room_with_box()); }
 
-OperatorOptions fast(double eta, int degree) {
-  OperatorOptions o;
-  o.method = OperatorMethod::fast;
-  o.eta = eta;
-  o.degree = degree;
-  return o;
-}
-
 TEST(BlockProduct, FastConvexColumnsAreSingleProducts) {
   const Scene cube = testing::reflecting_builtin("cube");
   const Collocation col(cube, 3);
-  const auto op = make_operator(col, fast(0.4, 6));
+  const auto op = make_operator(col, testing::fast_options(0.4, 6));
   ASSERT_GT(dynamic_cast<const FastOperator&>(*op).statistics().far_pairs, 0u);
   for (const Index columns : {1, 2, 3, 4, 5, 9}) expect_columns_bit_identical(*op, columns);
 }
@@ -67,7 +59,7 @@ TEST(BlockProduct, FastConvexColumnsAreSingleProducts) {
 TEST(BlockProduct, FastOccludedColumnsAreSingleProducts) {
   const Scene room = room_scene();
   const Collocation col(room, 2);
-  const auto op = make_operator(col, fast(0.4, 4), Visibility::occluded);
+  const auto op = make_operator(col, testing::fast_options(0.4, 4), Visibility::occluded);
   for (const Index columns : {1, 3, 6}) expect_columns_bit_identical(*op, columns);
 }
 

@@ -23,6 +23,7 @@
 
 #include "configuration_factors.hpp"
 #include "occluded_scenes.hpp"
+#include "test_scenes.hpp"
 #include "validated_meshes.hpp"
 
 #include <gtest/gtest.h>
@@ -68,13 +69,7 @@ OperatorOptions dense_options() {
   return o;
 }
 
-OperatorOptions fast_options(double eta, int degree) {
-  OperatorOptions o;
-  o.method = OperatorMethod::fast;
-  o.eta = eta;
-  o.degree = degree;
-  return o;
-}
+using testing::fast_options;
 
 // Dense with exact clipping: |row sum - rho_i| <= 1e-10. Each entry is a closed-form integral over
 // polygons computed in double precision (relative error ~1e-14 per form factor, a few pieces per
