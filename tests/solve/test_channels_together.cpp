@@ -152,5 +152,24 @@ TEST(ChannelsTogether, OccludedSettingChosenOnProbes) {
   }
 }
 
+// When no probed setting passes, the one with the smallest check is built and a warning says that
+// the stricter settings were probed (M <= 2 here, far from the accuracy asked at n = 1536).
+TEST(ChannelsTogether, NoProbedSettingPassesSaysSo) {
+  const Scene scene = three_channel_room();
+  RadiositySolverOptions o;
+  o.level = 3;
+  o.method = OperatorMethod::fast;
+  o.manual.eta = 0.5;
+  o.manual.degree = 0;
+  o.tighten_on_failed_check = true;
+  const RadiositySolver solver(scene, o);
+  const RadiositySolverInfo& info = solver.info();
+  ASSERT_TRUE(info.self_check.has_value());
+  EXPECT_GT(info.self_check->relative_error, info.self_check_threshold);
+  ASSERT_EQ(info.warnings.size(), 1u);
+  EXPECT_NE(info.warnings[0].find("none of the stricter settings probed passes"), std::string::npos) << info.warnings[0];
+  EXPECT_LE(solver.parameters().degree, 2);
+}
+
 }  // namespace
 }  // namespace panelrad

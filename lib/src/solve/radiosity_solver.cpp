@@ -221,7 +221,9 @@ void RadiositySolver::build_operator() {
   if (op.method == OperatorMethod::fast)
     info_.self_check_threshold =
         self_check_threshold(problem_size(scene_.mesh(), info_.level), info_.conditioning_reflectivity);
+  std::string why = tighten ? "(nothing stricter to try)" : "(manual parameters, not tightened)";
   if (op.method == OperatorMethod::fast && tighten && info_.visibility == Visibility::occluded) {
+    why = "(none of the stricter settings probed passes)";
     say("fast operator: probing the setting on the self-check's sampled rows");
     choose_by_probes(rows, op);
     op_ = make(rows, op);  // its self-check is the probe's (the same rows, computed alike)
@@ -245,7 +247,7 @@ void RadiositySolver::build_operator() {
   if (info_.self_check && !(info_.self_check->relative_error <= info_.self_check_threshold))
     info_.warnings.push_back(fmt("the fast product's measured relative error %.2e is above the accepted %.2e ",
                                  info_.self_check->relative_error, info_.self_check_threshold) +
-                             (tighten ? "(nothing stricter to try)" : "(manual parameters, not tightened)") +
+                             why +
                              "; the answer may be less accurate than the discretization");
   info_.operator_bytes = op_->bytes();
   info_.operator_s = clock.seconds();
