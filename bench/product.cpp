@@ -1,0 +1,125 @@
+// The fast product K_n v of section 4 against its accuracy, on the paper's cube (31), for the
+// comparison with an H-matrix code at matched accuracy: for each setting (eta of (41), M of (44))
+// one operator, and for it
+//   - setup: the cluster frames, the minimal admissible coverings (42), the near field (43) and,
+//     when stored, the far coefficients (44)-(45);
+//   - the time of one product (the median of --products K, default 9) and of one block of 3;
+//   - the bytes the operator holds, in all and per element;
+//   - the product's error for each test vector of the self-check (FastSelfCheck: constant,
+//     smooth, oscillating "cos 7x + sin(5y) z", piecewise constant by facet, random +-1), on
+//     --rows S sampled exact rows (default 256), relative to max_k (K|v|)_k.
+// Rows are weighted by rho of (31), as in the solver.
+//   usage: product [--level L] [--threads T] [--products K] [--rows S] [--double | --single]
+//                  [--recompute] [--setting ETA M]...
+// Default settings: (0.5, 6) (0.4, 7) (0.3, 7) (0.3, 8) at level 6 (n = 49,152).
+#include <panelrad/operator/collocation.hpp>
+#include <panelrad/operator/fast_operator.hpp>
+#include <panelrad/scene/scene.hpp>
+#include <panelrad/support/resources.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <iostream>
+#include <string>
+#include <utility>
+#include <vector>
+
+using namespace panelrad;
+
+namespace {
+
+double median(std::vector<double> t) {
+  std::sort(t.begin(), t.end());
+  return t[t.size() / 2];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int level = 6, products = 9, rows = 256;
+  int precision = -1;  // -1: the library's default for a convex scene, 0: double, 1: single
+  bool recompute = false;
+  std::vector<std::pair<double, int>> settings;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--level") && i + 1 < argc) {
+      level = std::atoi(argv[++i]);
+    } else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) {
+      set_threads(std::atoi(argv[++i]));
+    } else if (!std::strcmp(argv[i], "--products") && i + 1 < argc) {
+      products = std::max(1, std::atoi(argv[++i]));
+    } else if (!std::strcmp(argv[i], "--rows") && i + 1 < argc) {
+      rows = std::max(1, std::atoi(argv[++i]));
+    } else if (!std::strcmp(argv[i], "--double")) {
+      precision = 0;
+    } else if (!std::strcmp(argv[i], "--single")) {
+      precision = 1;
+    } else if (!std::strcmp(argv[i], "--recompute")) {
+      recompute = true;
+    } else if (!std::strcmp(argv[i], "--setting") && i + 2 < argc) {
+      const double eta = std::atof(argv[++i]);
+      settings.emplace_back(eta, std::atoi(argv[++i]));
+    } else {
+      std::cerr << "usage: product [--level L] [--threads T] [--products K] [--rows S] [--double | --single] "
+                   "[--recompute] [--setting ETA M]...\n";
+      return 2;
+    }
+  }
+  if (settings.empty()) settings = {{0.5, 6}, {0.4, 7}, {0.3, 7}, {0.3, 8}};
+  try {
+    const Scene cube = make_paper_cube_scene();
+    Stopwatch clock;
+    const Collocation col(cube, level);
+    std::printf("fast product on the cube, level %d, n = %d, threads %d (collocation and E: %.1f s)\n", level,
+                static_cast<int>(col.size()), max_threads(), clock.seconds());
+    std::printf("%5s %3s %6s %12s %9s %10s %10s %10s %9s  %s\n", "eta", "M", "store", "far pairs", "setup s",
+                "product s", "3 cols s", "MB", "B/elem", "error per self-check vector (max over vectors)");
+    for (const auto& [eta, degree] : settings) {
+      FastOptions o;
+      o.eta = eta;
+      o.degree = degree;
+      if (precision >= 0) o.single_precision_coefficients = precision == 1;
+      if (recompute) o.far_storage_limit = 1;
+      clock.restart();
+      const FastOperator op(col, o);
+      const double setup = clock.seconds();
+      const Eigen::VectorXd v = Eigen::VectorXd::LinSpaced(col.size(), 0.25, 1.0);
+      Eigen::MatrixXd V(col.size(), 3), Y;
+      V.col(0) = v;
+      V.col(1) = Eigen::VectorXd::Ones(col.size());
+      V.col(2) = Eigen::VectorXd::LinSpaced(col.size(), 1.0, 0.5);
+      Eigen::VectorXd y;
+      std::vector<double> single, block;
+      for (int k = 0; k < products; ++k) {
+        clock.restart();
+        op.apply(v, y);
+        single.push_back(clock.seconds());
+        clock.restart();
+        op.apply_block(V, Y);
+        block.push_back(clock.seconds());
+      }
+      const FastSelfCheck check = op.self_check(rows);
+      const FastStatistics& s = op.statistics();
+      std::printf("%5.2f %3d %6s %12zu %9.3f %10.4f %10.4f %10.1f %9.0f ", eta, degree,
+                  !s.far_stored ? "none" : o.single_precision_coefficients ? "float" : "double", s.far_pairs, setup,
+                  median(single), median(block), static_cast<double>(op.bytes()) / 1e6,
+                  static_cast<double>(op.bytes()) / static_cast<double>(col.size()));
+      for (const SelfCheckVector& c : check.vectors) std::printf(" %.2e", c.relative_error);
+      std::printf("  (%.2e)\n", check.relative_error);
+      std::fflush(stdout);
+    }
+    std::printf("self-check vectors:");
+    {
+      FastOptions o;
+      o.probe_samples = 1;
+      const FastOperator probe(col, o);
+      for (const auto& v : probe.self_check_vectors()) std::printf(" [%s]", v.first.c_str());
+    }
+    std::printf("; rows sampled %d; peak memory %.0f MB\n", rows, peak_rss_mb());
+  } catch (const std::exception& e) {
+    std::cerr << "product: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
