@@ -11,6 +11,7 @@
 #include <panelrad/geometry/cluster_tree.hpp>
 #include <panelrad/geometry/byte_size.hpp>
 #include <panelrad/geometry/parallel_for.hpp>
+#include <panelrad/geometry/planar_facets.hpp>
 #include <panelrad/geometry/subdivision.hpp>
 
 #include <panelrad/geometry/bounding_box.hpp>
@@ -341,7 +342,7 @@ std::size_t ClusterTree::estimate_bytes(Index n0, int finest_level) {
 std::size_t ClusterTree::bytes() const {
   std::size_t total = sizeof(ClusterTree) + levels_.capacity() * sizeof(std::vector<Cluster>);
   for (const auto& level : levels_) total += level.capacity() * sizeof(Cluster);
-  return total + centroid_.capacity() * sizeof(Vec3);
+  return total + centroid_.capacity() * sizeof(Vec3) + root_plane_.capacity() * sizeof(Index);
 }
 
 ClusterTree::ClusterTree(const TriangleMesh& mesh, int finest_level)
@@ -375,6 +376,14 @@ ClusterTree::ClusterTree(const TriangleMesh& mesh, int finest_level, std::size_t
   corners.reserve(3 * roots.size());
   for (const Cluster& root : roots) corners.insert(corners.end(), root.vertex.begin(), root.vertex.end());
   diameter_ = bounding_box_diameter(corners);
+
+  // --- supporting planes of the roots (coplanar clusters, section 4.2 case (a)) -------------------
+  const std::vector<Index> facet_plane = facet_planes(mesh);
+  root_plane_.resize(static_cast<std::size_t>(n0));
+  for (Index k = 0; k < n0; ++k) {
+    root_plane_[static_cast<std::size_t>(k)] = facet_plane[static_cast<std::size_t>(roots[static_cast<std::size_t>(k)].facet)];
+    num_planes_ = std::max(num_planes_, root_plane_[static_cast<std::size_t>(k)] + 1);
+  }
 }
 
 }  // namespace panelrad::geometry

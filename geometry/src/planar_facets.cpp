@@ -12,7 +12,8 @@ namespace panelrad::geometry {
 
 using namespace validation_detail;
 
-std::size_t count_planar_facets(const TriangleMesh& mesh) {
+// Per triangle, the first triangle of its maximal planar facet (count_planar_facets' classes).
+std::vector<Index> validation_detail::planar_facet_classes(const TriangleMesh& mesh) {
   const Sz nt = mesh.triangles.size();
   const Sz nv = mesh.vertices.size();
   for (const Tri& tr : mesh.triangles)
@@ -66,9 +67,20 @@ std::size_t count_planar_facets(const TriangleMesh& mesh) {
     }
     i = j;
   }
+  // Each class named by its smallest triangle.
+  std::vector<Index> smallest(nt, -1), cls(nt);
+  for (Sz t = 0; t < nt; ++t) {
+    Index& s = smallest[at(find(static_cast<Index>(t)))];
+    if (s < 0) s = static_cast<Index>(t);
+    cls[t] = s;
+  }
+  return cls;
+}
+
+std::size_t count_planar_facets(const TriangleMesh& mesh) {
+  const std::vector<Index> cls = planar_facet_classes(mesh);
   Sz count = 0;
-  for (Sz t = 0; t < nt; ++t)
-    if (find(static_cast<Index>(t)) == static_cast<Index>(t)) ++count;
+  for (Sz t = 0; t < cls.size(); ++t) count += cls[t] == static_cast<Index>(t);
   return count;
 }
 

@@ -125,6 +125,12 @@ std::vector<Index> unsupported_triangles(const TriangleMesh& mesh, const Adjacen
 /// The surface winds once around `inside`, which is strictly on the inner side of every plane.
 bool winds_once_around(const TriangleMesh& mesh, const Geometry& g, const Vec3& inside);
 
+// --- planar facets (planar_facets.cpp) -----------------------------------------------------------
+
+/// Per triangle, the smallest triangle of its maximal planar facet: triangles joined across shared
+/// edges whose four vertices are coplanar, exactly or within the rounding (count_planar_facets).
+std::vector<Index> planar_facet_classes(const TriangleMesh& mesh);
+
 // --- distances (plane_distance.cpp) -------------------------------------------------------------
 
 /// The largest distance between two vertices (the bounding-box diagonal above 5000 vertices).

@@ -5,6 +5,7 @@
 // coordinates; dents from 1e-6 to 1e-1 of the diameter are refused at 17 and 15 digits (and above
 // the 6-digit rounding at 6 digits); a refusal never reports a violation of 0.
 #include <panelrad/geometry/mesh_io.hpp>
+#include <panelrad/geometry/planar_facets.hpp>
 #include <panelrad/geometry/validation.hpp>
 
 #include <gtest/gtest.h>
@@ -15,6 +16,7 @@
 #include <cstdio>
 #include <fstream>
 #include <numbers>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -111,6 +113,12 @@ const std::vector<Shipped>& shipped() {
 
 /// Largest signed distance of a vertex outside a triangle's plane, by a direct loop in long double
 /// (an independent measurement of what the validator reports; rounding error ~1e-19 relative).
+// The number of distinct supporting planes of the facets (facet_planes).
+std::size_t distinct_planes(const pg::TriangleMesh& m) {
+  const std::vector<pg::Index> plane = pg::facet_planes(m);
+  return std::set<pg::Index>(plane.begin(), plane.end()).size();
+}
+
 double worst_outside_distance(const pg::TriangleMesh& m) {
   long double worst = 0;
   for (const auto& t : m.triangles) {
@@ -213,6 +221,7 @@ TEST(RoundedConvexity, RotatedCornellBoxIsAcceptedWithANote) {
     // Facets: the 14 input faces stay; the planar facets are the box's 6 sides (ceiling grid one).
     EXPECT_EQ(m.num_facets, 14);
     EXPECT_EQ(pg::count_planar_facets(m), 6u);
+    EXPECT_EQ(distinct_planes(m), 6u);  // the ceiling grid's 9 facets in one supporting plane
     EXPECT_NEAR(pg::surface_area(m), 6.0, d == 6 ? 1e-4 : 1e-12);  // 6 unit squares
   }
 }
@@ -254,6 +263,7 @@ TEST(RoundedConvexity, EveryShippedMeshKeepsItsVerdictWhenRotatedAndRounded) {
               EXPECT_LE(pg::count_planar_facets(m), m.triangles.size());
             } else {
               EXPECT_EQ(pg::count_planar_facets(m), planar);  // the planar facet structure kept
+              EXPECT_EQ(distinct_planes(m), planar);          // coplanar facets of a convex solid touch
             }
             // Rotation keeps the area; 6 digits move coordinates by up to 5e-6 relative.
             EXPECT_NEAR(pg::surface_area(m), area, (d == 6 ? 1e-4 : 1e-12) * area);
@@ -292,6 +302,7 @@ TEST(RoundedConvexity, GridFaceWithOffPlaneCentreIsAccepted) {
       EXPECT_LE(r.worst_convexity_violation, 4 * delta / std::sqrt(3.0));
       EXPECT_EQ(m.num_facets, 9);
       EXPECT_EQ(pg::count_planar_facets(m), 6u);  // the four top quads are one facet
+      EXPECT_EQ(distinct_planes(m), 6u);          // and one supporting plane
     }
 }
 

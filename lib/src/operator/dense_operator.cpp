@@ -50,7 +50,8 @@ DenseOperator::DenseOperator(const Collocation& collocation, const NearFieldOpti
         const double rho = collocation.reflectivity()[i];
         if (rho == 0) continue;
         cover_visible(
-            collocation.tree(), *occluders, collocation.collocation_point(i), collocation.normal(i), 0.0, integrate,
+            collocation.tree(), *occluders, collocation.collocation_point(i), collocation.normal(i),
+            collocation.tree().plane(collocation.tree().finest_level(), i), 0.0, integrate,
             [](int, geometry::Index) {}, [&](geometry::Index j, double value) { K_(i, j) = rho * value; }, counts,
             scratch);
       }
@@ -70,12 +71,14 @@ DenseOperator::DenseOperator(const Collocation& collocation, const NearFieldOpti
   for (geometry::Index i = 0; i < n; ++i) {
     const Vec3& P = collocation.collocation_point(i);
     const Vec3& nP = collocation.normal(i);
-    const geometry::Index fi = collocation.facet(i);
+    const geometry::ClusterTree& tree = collocation.tree();
+    const int L = tree.finest_level();
+    const geometry::Index plane = tree.plane(L, i);
     const double rho = collocation.reflectivity()[i];
     for (geometry::Index j = 0; j < n; ++j) {
       const auto& e = elements[static_cast<std::size_t>(j)];
-      // Same facet: coplanar with P_i, G = 0 exactly (section 4.2, case (a)); rho = 0: zero row.
-      K_(i, j) = (e.facet == fi || rho == 0) ? 0.0 : rho * integrate(P, nP, e);
+      // In P_i's plane (any facet): coplanar, G = 0 exactly (section 4.2, case (a)); rho = 0: zero row.
+      K_(i, j) = (tree.plane(L, j) == plane || rho == 0) ? 0.0 : rho * integrate(P, nP, e);
     }
   }
 }

@@ -23,11 +23,12 @@ using geometry::Index;
 
 namespace {
 
-/// Walks the cluster tree for collocation point P (facet fP) and reports the minimal admissible
-/// covering (42): admissible clusters (41) whole, non-admissible leaves as near field; clusters
-/// in P's own facet are coplanar with P (G = 0, section 4.2 case (a)) and skipped with their subtree.
+/// Walks the cluster tree for collocation point P (in the plane planeP of the tree) and reports
+/// the minimal admissible covering (42): admissible clusters (41) whole, non-admissible leaves as
+/// near field; clusters in P's plane, of any facet, are coplanar with P (G = 0, section 4.2 case
+/// (a)) and skipped with their subtree.
 template <class Far, class Near, class Skip>
-void cover(const geometry::ClusterTree& tree, const Vec3& P, Index fP, double eta, Far&& far, Near&& near,
+void cover(const geometry::ClusterTree& tree, const Vec3& P, Index planeP, double eta, Far&& far, Near&& near,
            Skip&& skip) {
   const int L = tree.finest_level();
   struct Item {
@@ -41,7 +42,7 @@ void cover(const geometry::ClusterTree& tree, const Vec3& P, Index fP, double et
     while (top > 0) {
       const Item it = stack[--top];
       const Cluster& c = tree.cluster(it.level, it.k);
-      if (c.facet == fP) {
+      if (tree.plane(it.level, it.k) == planeP) {
         skip();
       } else if (geometry::is_admissible(P, c.centre, c.radius, eta)) {
         far(it.level, it.k);
@@ -100,7 +101,7 @@ FastOperator::FastOperator(const Collocation& collocation, const FastOptions& op
     report_stage("fast operator: minimal admissible coverings (42) and near field (43), eta " + std::string(eta) +
                  ", M " + std::to_string(options_.degree));
   }
-  std::vector<RowBlock> blocks = cover_rows(collocation);
+  std::vector<RowBlock> blocks = cover_rows();
   store_coverings(blocks);
   stats_.covering_s = clock.seconds();  // covering (42) and near field (43)
   clock.restart();
@@ -198,7 +199,7 @@ void FastOperator::setup_element_data(const Collocation& collocation) {
 // One traversal per row held, in blocks of kRowBlock rows: each block keeps its covering (42)
 // (and the near-field integrals, (43) first sum) locally, so the result is identical for any
 // thread count once the blocks are concatenated in row order (store_coverings).
-std::vector<FastOperator::RowBlock> FastOperator::cover_rows(const Collocation& collocation) {
+std::vector<FastOperator::RowBlock> FastOperator::cover_rows() {
   const geometry::ClusterTree& tree = *tree_;
   const int L = tree.finest_level();
   const NearFieldIntegrator integrate_near(options_.near, tree.mesh_size());
@@ -232,7 +233,7 @@ std::vector<FastOperator::RowBlock> FastOperator::cover_rows(const Collocation& 
       };
       if (occluders) {
         cover_visible(
-            tree, *occluders, P, nP, options_.eta, integrate_near, add_far,
+            tree, *occluders, P, nP, tree.plane(L, i), options_.eta, integrate_near, add_far,
             [&](Index e, double value) {
               blk.near_col.push_back(e);
               blk.near_val.push_back(rho * value);  // (43), first sum, over the visible part
@@ -241,7 +242,7 @@ std::vector<FastOperator::RowBlock> FastOperator::cover_rows(const Collocation& 
             counts, scratch);
       } else {
         cover(
-            tree, P, collocation.facet(i), options_.eta, add_far,
+            tree, P, tree.plane(L, i), options_.eta, add_far,
             [&](Index e) {
               blk.near_col.push_back(e);
               blk.near_val.push_back(rho * integrate_near(P, nP, tree.cluster(L, e)));  // (43), first sum
@@ -252,6 +253,7 @@ std::vector<FastOperator::RowBlock> FastOperator::cover_rows(const Collocation& 
       blk.near_count[static_cast<std::size_t>(i - first)] = nn;
       blk.far_count[static_cast<std::size_t>(i - first)] = nf;
     }
+    skipped += counts.coplanar;
     visible += counts.visible;
     hidden += counts.hidden;
     partial += counts.partial;
@@ -371,7 +373,7 @@ FastOperator::MemoryEstimate FastOperator::estimate_memory(const Collocation& co
     const Index i = begin + static_cast<Index>((static_cast<std::int64_t>(s) * m + m / 2) / samples);
     if (collocation.reflectivity()[i] == 0) continue;
     ++sampled;
-    cover(tree, collocation.collocation_point(i), collocation.facet(i), eta, [&](int, Index) { ++far; },
+    cover(tree, collocation.collocation_point(i), tree.plane(L, i), eta, [&](int, Index) { ++far; },
           [&](Index) { ++near; }, [] {});
   }
   MemoryEstimate e;
@@ -645,6 +647,7 @@ std::vector<Index> FastOperator::self_check_rows(int samples) const {
 // closed-form entries (one form factor per element, O(n) per row).
 void FastOperator::exact_rows(FastSelfCheckReference& reference) const {
   const auto elements = tree_->elements();
+  const int L = tree_->finest_level();
   const auto& rows = reference.rows;
   const auto& vectors = reference.vectors;
   const std::size_t V = vectors.size(), S = rows.size();
@@ -683,12 +686,13 @@ void FastOperator::exact_rows(FastSelfCheckReference& reference) const {
         // The exact row with V: every element's closed-form form factor over its visible part,
         // by the walk with nothing admissible (eta = 0).
         VisibilityCounts counts;
-        cover_visible(*tree_, *occluders, P, nP, 0.0, exact_near, [](int, Index) {}, add, counts, covering);
+        cover_visible(*tree_, *occluders, P, nP, tree_->plane(L, i), 0.0, exact_near, [](int, Index) {}, add, counts,
+                      covering);
       } else {
-        const Index fi = elements[static_cast<std::size_t>(i)].facet;
+        const Index plane = tree_->plane(L, i);
         for (Index j = 0; j < n_; ++j) {
           const Cluster& e = elements[static_cast<std::size_t>(j)];
-          if (e.facet == fi) continue;  // coplanar: G = 0
+          if (tree_->plane(L, j) == plane) continue;  // coplanar: G = 0
           add(j, quadrature::form_factor(P, nP, e.vertex[0], e.vertex[1], e.vertex[2], e.normal));
         }
       }

@@ -31,7 +31,9 @@ struct VisibilityCounts {
   std::size_t hidden = 0;         ///< classified hidden, skipped with their subtrees
   std::size_t partial = 0;        ///< classified partly visible (refined, or clipped at the elements)
   std::size_t clipped = 0;        ///< elements integrated over their visible part
+  std::size_t coplanar = 0;       ///< roots in P's plane, skipped unclassified (G = 0 there)
   VisibilityCounts& operator+=(const VisibilityCounts& o) {
+    coplanar += o.coplanar;
     visible += o.visible;
     hidden += o.hidden;
     partial += o.partial;
@@ -58,12 +60,14 @@ struct VisibleCoveringScratch {
   geometry::ShadowPlane plane;  // the root being walked (depth first: its subtree before the next root)
 };
 
-/// Walks the tree for collocation point P (inner normal nP): far(level, k) for the admissible,
+/// Walks the tree for collocation point P (inner normal nP, in the tree's plane planeP; the roots
+/// in that plane are coplanar with P, G = 0 on them, and are skipped before any classification,
+/// counted in counts.coplanar): far(level, k) for the admissible,
 /// fully visible clusters; near(element, value) for the elements reached, with value the
 /// integral (1/pi) Int_Delta G V dS_Q (rho not applied). Deterministic: a fixed depth-first order.
 template <class Far, class Near>
 void cover_visible(const geometry::ClusterTree& tree, const geometry::Occluders& occluders, const Vec3& P,
-                   const Vec3& nP, double eta, const NearFieldIntegrator& integrate_near, Far&& far, Near&& near,
+                   const Vec3& nP, geometry::Index planeP, double eta, const NearFieldIntegrator& integrate_near, Far&& far, Near&& near,
                    VisibilityCounts& counts, VisibleCoveringScratch& s) {
   using geometry::Cluster;
   using geometry::Index;
@@ -71,7 +75,13 @@ void cover_visible(const geometry::ClusterTree& tree, const geometry::Occluders&
   const int L = tree.finest_level();
   s.stack.clear();
   s.pool.clear();
-  for (Index root = tree.num_roots() - 1; root >= 0; --root) s.stack.push_back({0, root, 0, 0, false});
+  for (Index root = tree.num_roots() - 1; root >= 0; --root) {
+    if (tree.plane(0, root) == planeP) {
+      ++counts.coplanar;
+      continue;
+    }
+    s.stack.push_back({0, root, 0, 0, false});
+  }
   while (!s.stack.empty()) {
     const VisibleCoveringScratch::Item it = s.stack.back();
     s.stack.pop_back();

@@ -43,6 +43,11 @@ class ClusterTree {
   Index num_elements() const { return level_size(finest_level_); }  ///< n = n0 4^L
   Index level_size(int level) const { return n0_ << (2 * level); }
   Index num_facets() const { return num_facets_; }
+  /// The supporting plane of cluster k of level l (of its root triangle): clusters of one plane
+  /// id lie in one plane, exactly or within the rounding of the input (facet_planes in
+  /// planar_facets.hpp), whichever facet they are in; a point of that plane sees none of them.
+  Index plane(int l, Index k) const { return root_plane_[static_cast<std::size_t>(k >> (2 * l))]; }
+  Index num_planes() const { return num_planes_; }
 
   std::span<const Cluster> level(int l) const { return levels_[static_cast<std::size_t>(l)]; }
   const Cluster& cluster(int l, Index k) const { return levels_[static_cast<std::size_t>(l)][static_cast<std::size_t>(k)]; }
@@ -76,6 +81,8 @@ class ClusterTree {
   int finest_level_ = 0;
   Index n0_ = 0;
   Index num_facets_ = 0;
+  Index num_planes_ = 0;
+  std::vector<Index> root_plane_;  // per level-0 triangle: its facet's plane id
   double mesh_size_ = 0;
   double diameter_ = 0;
   std::vector<std::vector<Cluster>> levels_;

@@ -5,6 +5,7 @@
 #include <panelrad/geometry/mesh.hpp>
 
 #include <cstddef>
+#include <vector>
 
 namespace panelrad::geometry {
 
@@ -15,5 +16,17 @@ namespace panelrad::geometry {
 /// that a rotated or rounded cube still has 6. Works on any mesh with finite coordinates (edges not
 /// shared by exactly two triangles simply join nothing).
 std::size_t count_planar_facets(const TriangleMesh& mesh);
+
+/// The supporting plane of each facet: per facet id, a plane id in [0, number of planes), the same
+/// for facets whose triangles lie in one plane (in order of their first facet), whether or not they
+/// touch. A facet is in the plane of an earlier facet's first triangle when each corner of its own
+/// first triangle is exactly coplanar with it (CGAL's filtered orientation predicate), or within the
+/// rounding of the input as count_planar_facets joins triangles (bound(t, v) and
+/// kMaxRoundingViolation); the facets' triangles are planar by validation. A point of a plane sees
+/// nothing of that plane: G(P, Q) of (2) has the factor (Q - P).n_P = 0 there, so every cluster in
+/// P's plane is coplanar with P (section 4.2, case (a)), whatever facet it lies in. Throws MeshError
+/// for inconsistent meshes (bad index, non-finite coordinate, a degenerate first triangle); a
+/// facet id that no triangle has gets -1.
+std::vector<Index> facet_planes(const TriangleMesh& mesh);
 
 }  // namespace panelrad::geometry

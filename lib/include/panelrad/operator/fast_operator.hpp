@@ -213,7 +213,7 @@ class FastOperator final : public RadiosityOperator {
   std::string rows_note() const;
   void setup_cluster_frames();
   void setup_element_data(const Collocation& collocation);
-  std::vector<RowBlock> cover_rows(const Collocation& collocation);
+  std::vector<RowBlock> cover_rows();
   void store_coverings(std::vector<RowBlock>& blocks);
   void setup_far_coefficients();
   std::size_t held_bytes() const;

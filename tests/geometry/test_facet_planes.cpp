@@ -1,0 +1,126 @@
+// Supporting planes of the facets (facet_planes in planar_facets.hpp): facets in one plane share
+// an id whether or not they touch, exactly or within the rounding of the input; distinct planes
+// never do. The cluster tree gives every cluster its root's plane.
+#include <panelrad/geometry/builtin_scenes.hpp>
+#include <panelrad/geometry/cluster_tree.hpp>
+#include <panelrad/geometry/planar_facets.hpp>
+#include <panelrad/geometry/scene_validation.hpp>
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace pg = panelrad::geometry;
+using pg::Index;
+using pg::Vec3;
+
+const std::string kScenes = std::string(PANELRAD_SOURCE_DIR) + "/examples/scenes/";
+
+// Appends triangle (a, b, c) as one new facet.
+void add_facet(pg::TriangleMesh& m, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Index v = static_cast<Index>(m.vertices.size());
+  m.vertices.insert(m.vertices.end(), {a, b, c});
+  m.triangles.push_back({v, v + 1, v + 2});
+  m.facet_of_triangle.push_back(m.num_facets++);
+}
+
+// The independent truth in double precision: each corner of g's first triangle within `tol` of the
+// plane of f's first triangle (a unit normal from the cross product, long double).
+bool near_plane(const pg::TriangleMesh& m, Index f, Index g, double tol) {
+  const auto first = [&](Index facet) {
+    for (std::size_t t = 0; t < m.triangles.size(); ++t)
+      if (m.facet_of_triangle[t] == facet) return t;
+    return m.triangles.size();
+  };
+  const auto& tf = m.triangles[first(f)];
+  const auto& tg = m.triangles[first(g)];
+  const Vec3& a = m.vertices[static_cast<std::size_t>(tf[0])];
+  const Vec3 n = (m.vertices[static_cast<std::size_t>(tf[1])] - a).cross(m.vertices[static_cast<std::size_t>(tf[2])] - a).normalized();
+  for (Index v : tg)
+    if (std::abs(n.dot(m.vertices[static_cast<std::size_t>(v)] - a)) > tol) return false;
+  return true;
+}
+
+TEST(FacetPlanes, CoplanarFacetsShareAPlaneWhetherOrNotTheyTouch) {
+  pg::TriangleMesh m;
+  add_facet(m, {0, 0, 0}, {1, 0, 0}, {0, 1, 0});      // z = 0
+  add_facet(m, {0, 0, 1e-3}, {1, 0, 1e-3}, {0, 1, 1e-3});  // z = 1e-3: parallel, distinct
+  add_facet(m, {5, 5, 0}, {6, 5, 0}, {5, 7, 0});      // z = 0 again, far from the first
+  add_facet(m, {0, 0, 0}, {0, 1, 0}, {0, 0, 1});      // x = 0: shares an edge with the first
+  add_facet(m, {9, 9, 0}, {9, 8, 0}, {8, 9, 0});      // z = 0, the other orientation
+  const std::vector<Index> plane = pg::facet_planes(m);
+  EXPECT_EQ(plane, (std::vector<Index>{0, 1, 0, 2, 0}));
+}
+
+TEST(FacetPlanes, InvariantUnderPowerOfTwoScalingAndTranslation) {
+  pg::TriangleMesh cube = pg::make_cube();
+  // Every triangle its own facet: 12 facets in 6 planes.
+  for (std::size_t t = 0; t < cube.triangles.size(); ++t) cube.facet_of_triangle[t] = static_cast<Index>(t);
+  cube.num_facets = 12;
+  const std::vector<Index> reference = pg::facet_planes(cube);
+  EXPECT_EQ(std::set<Index>(reference.begin(), reference.end()).size(), 6u);
+  for (std::size_t t = 0; t < 12; ++t)
+    for (std::size_t u = 0; u < 12; ++u)
+      EXPECT_EQ(reference[t] == reference[u], near_plane(cube, static_cast<Index>(t), static_cast<Index>(u), 1e-12))
+          << t << " " << u;
+  for (int e : {-250, -60, 0, 60, 250})
+    for (const Vec3& offset : {Vec3(0, 0, 0), Vec3(3.25, -7.5, 1e3)}) {
+      pg::TriangleMesh m = cube;
+      for (Vec3& v : m.vertices) v = std::ldexp(1.0, e) * (v + offset);
+      EXPECT_EQ(pg::facet_planes(m), reference) << "2^" << e;
+    }
+}
+
+// The measured Cornell box: 17 facets (walls, floor, ceiling pieces around the light, the light,
+// the blocks' faces). Plane ids agree with the double-precision check for every pair of facets
+// (its coordinates have one decimal: coplanar facets are so to the rounding of 0.1, ~1e-13 here,
+// and distinct planes are millimetres apart), and the light lies in the ceiling's plane.
+TEST(FacetPlanes, CornellBoxLightInTheCeilingPlane) {
+  pg::SceneShape shape;
+  const pg::TriangleMesh m = pg::load_scene_mesh(kScenes + "cornell_box.obj", shape);
+  const std::vector<Index> plane = pg::facet_planes(m);
+  ASSERT_EQ(plane.size(), static_cast<std::size_t>(m.num_facets));
+  std::size_t together = 0;
+  for (Index f = 0; f < m.num_facets; ++f)
+    for (Index g = 0; g < m.num_facets; ++g) {
+      const bool same = plane[static_cast<std::size_t>(f)] == plane[static_cast<std::size_t>(g)];
+      EXPECT_EQ(same, near_plane(m, f, g, 1e-9 * 560)) << f << " " << g;
+      together += f != g && same;
+    }
+  EXPECT_GT(together, 0u);  // the light and the ceiling (and any other coplanar facets)
+  // The light (facet 7, front down, y = 548.8) and a facet of the ceiling: the highest facet
+  // facing down other than the light.
+  const auto y_of = [&](Index f) {
+    for (std::size_t t = 0; t < m.triangles.size(); ++t)
+      if (m.facet_of_triangle[t] == f) return m.vertices[static_cast<std::size_t>(m.triangles[t][0])].y();
+    return 0.0;
+  };
+  std::size_t same_height = 0;
+  for (Index g = 0; g < m.num_facets; ++g)
+    if (g != 7 && near_plane(m, 7, g, 1e-9)) {
+      ++same_height;
+      EXPECT_EQ(plane[7], plane[static_cast<std::size_t>(g)]);
+      EXPECT_DOUBLE_EQ(y_of(g), y_of(7));
+    }
+  EXPECT_GT(same_height, 0u);
+}
+
+// Every cluster carries its root's plane; the roots of one facet share it.
+TEST(FacetPlanes, ClusterTreePlanes) {
+  pg::TriangleMesh cube = pg::make_cube();
+  const std::vector<Index> facet_plane = pg::facet_planes(cube);
+  const pg::ClusterTree tree(cube, 2);
+  EXPECT_EQ(tree.num_planes(), 6);
+  for (int l = 0; l <= 2; ++l)
+    for (Index k = 0; k < tree.level_size(l); ++k)
+      EXPECT_EQ(tree.plane(l, k), facet_plane[static_cast<std::size_t>(tree.cluster(l, k).facet)]);
+}
+
+}  // namespace
