@@ -72,6 +72,7 @@ void expect_table1_rows(int min_level, int max_level) {
   o.max_level = max_level;
   o.op.method = OperatorMethod::dense;  // exact closed-form entries (the paper's Table 1)
   o.solver.tolerance = 0;  // tied to the discretization error, as the CLI does
+  o.solver.kind = SolverKind::neumann;  // the paper's iteration (34), whose ratio Example 2 gives
   const auto rows = run_paper_cube(o);
   ASSERT_EQ(rows.size(), static_cast<std::size_t>(max_level - min_level + 1));
   for (const auto& r : rows) {

@@ -130,11 +130,12 @@ TEST_P(ClosedBox, GmresStaysBoundedAsRhoNearsOne) {
   }
 }
 
-// The automatic solver: Neumann for max rho <= 0.8, GMRES above; SolveResult says which and why;
-// both answer c to 1e-10.
-TEST_P(ClosedBox, AutomaticChoicePicksAndSaysSo) {
+// The automatic solver: the iteration of fewer expected products (expected_products), and it
+// does use the fewest products among Neumann and GMRES, at every rho; SolveResult says which and
+// why (both expected counts); every solver answers c to 1e-10.
+TEST_P(ClosedBox, AutomaticChoiceTakesTheFewestProducts) {
   const BoxCase box = GetParam();
-  for (double rho : {0.3, 0.8, 0.81, 0.9, 0.99}) {
+  for (double rho : {0.1, 0.3, 0.5, 0.8, 0.9, 0.99}) {
     const Scene scene = box_scene(box.builtin, rho);
     const Collocation col(scene, box.level);
     const DenseOperator K(col, NearFieldOptions{});
@@ -142,15 +143,28 @@ TEST_P(ClosedBox, AutomaticChoicePicksAndSaysSo) {
     // 1e-11: GMRES maps its residual to an error bound with 1/(1 - rho) = 100 at rho = 0.99, so a
     // tighter tolerance asks for residuals at the rounding floor (~1e-15 n^(1/2)) and stagnates.
     opt.tolerance = 1e-11;
+    opt.max_iterations = 5000;
     const SolveResult r = solve(K, col.emissivity(), opt, scene.max_reflectivity());
-    const bool neumann = rho <= 0.8;
-    EXPECT_EQ(choose_solver(rho), neumann ? SolverKind::neumann : SolverKind::gmres) << rho;
-    EXPECT_EQ(r.solver, neumann ? "neumann" : "gmres") << "rho " << rho;
-    EXPECT_NE(r.choice.find(neumann ? "Neumann" : "GMRES"), std::string::npos) << r.choice;
-    EXPECT_NE(r.choice.find("0.8"), std::string::npos) << "the choice names its threshold: " << r.choice;
-    EXPECT_LT(max_deviation_from_constant(r.u), 1e-10 * kC) << "rho " << rho << ", " << r.choice;
-    std::cout << "[stress] " << box.builtin << " rho " << rho << ": " << r.choice << ", " << r.iterations
-              << " products\n";
+    SolverOptions each = opt;
+    each.kind = SolverKind::neumann;
+    const SolveResult neumann = solve(K, col.emissivity(), each, scene.max_reflectivity());
+    each.kind = SolverKind::gmres;
+    const SolveResult gmres = solve(K, col.emissivity(), each, scene.max_reflectivity());
+    const ExpectedProducts e = expected_products(rho, rho, opt.tolerance);
+    EXPECT_GT(e.neumann, 0);
+    EXPECT_GT(e.gmres, 0);
+    EXPECT_EQ(r.solver, e.gmres < e.neumann ? "gmres" : "neumann") << "rho " << rho;
+    EXPECT_EQ(choose_solver(rho, opt.tolerance), e.gmres < e.neumann ? SolverKind::gmres : SolverKind::neumann);
+    EXPECT_LE(r.iterations, std::min(neumann.iterations, gmres.iterations)) << "rho " << rho << ", " << r.choice;
+    EXPECT_NE(r.choice.find("expected " + std::to_string(std::min(e.neumann, e.gmres)) + " products"), std::string::npos)
+        << r.choice;
+    // The bounds are bounds: neither iteration needs more products than expected.
+    EXPECT_LE(neumann.iterations, e.neumann) << "rho " << rho;
+    EXPECT_LE(gmres.iterations, e.gmres) << "rho " << rho;
+    for (const SolveResult* s : {&r, &neumann, &gmres})
+      EXPECT_LT(max_deviation_from_constant(s->u), 1e-10 * kC) << "rho " << rho << ", " << s->solver;
+    std::cout << "[stress] " << box.builtin << " rho " << rho << ": " << r.choice << "; products auto " << r.iterations
+              << ", Neumann " << neumann.iterations << ", GMRES " << gmres.iterations << "\n";
   }
 }
 

@@ -69,6 +69,22 @@ std::pair<Index, Index> resolve_rows(const RowRange& rows, Index n) {
 
 }  // namespace
 
+// Per pair and core, this machine (AMD EPYC, 2 GHz, AVX2; 2 threads), from bench/product at
+// n = 49,152: recomputing T coefficients costs about c T ns, and writing them into new memory
+// costs the page's first touch, about w ns a byte; reading them back in a product about r ns a
+// byte. The model is deterministic (no timing at run time), so the choice, and with it the
+// product's rounding, does not vary between runs.
+FarFieldCosts far_field_costs(int degree, std::size_t bytes_per_term) {
+  constexpr double kRecomputeNsPerTerm = 3.5, kFirstTouchNsPerByte = 1.0, kReadNsPerByte = 0.1;
+  const double T = num_taylor_terms(degree);
+  const double bytes = T * static_cast<double>(bytes_per_term);
+  FarFieldCosts c;
+  c.recompute_ns = kRecomputeNsPerTerm * T;
+  c.fill_ns = c.recompute_ns + kFirstTouchNsPerByte * bytes;
+  c.read_ns = kReadNsPerByte * bytes;
+  return c;
+}
+
 // The coverings (42) of a block of consecutive rows: per row the counts, and the near-field
 // element ids with their integrals (43) and the far-field cluster ids, in row order.
 struct FastOperator::RowBlock {
@@ -299,7 +315,9 @@ void FastOperator::store_coverings(std::vector<RowBlock>& blocks) {
   const std::size_t far_coef_bytes = stats_.far_pairs * static_cast<std::size_t>(terms_) * coefficient_bytes();
   const std::size_t avail = available_memory_bytes();
   const std::size_t limit = options_.far_storage_limit ? options_.far_storage_limit : avail / 2;
-  stats_.far_stored = far_coef_bytes <= limit;
+  stats_.far_stored = far_coef_bytes <= limit &&
+                      (options_.expected_products <= 0 ||
+                       far_field_costs(options_.degree, coefficient_bytes()).store_pays(options_.expected_products));
   near_col_.resize(stats_.near_pairs);
   near_val_.resize(stats_.near_pairs);
   far_cluster_.resize(stats_.far_pairs);

@@ -97,6 +97,7 @@ std::unique_ptr<RadiosityOperator> make_operator(const Collocation& collocation,
       fast.progress = progress;
       fast.occluders = occluders;
       fast.single_precision_coefficients = single_precision_far_field(visibility);
+      fast.expected_products = options.expected_products;
       return std::make_unique<FastOperator>(collocation, fast);
     }
     case OperatorMethod::automatic: break;

@@ -50,7 +50,7 @@ std::string LevelMemoryEstimate::breakdown() const {
 
 std::vector<LevelMemoryEstimate> estimate_levels_memory(const geometry::TriangleMesh& mesh,
                                                         const std::vector<PlannedLevel>& levels,
-                                                        const SolverOptions& solver, double max_reflectivity,
+                                                        const SolverOptions& solver, double /*max_reflectivity*/,
                                                         const LevelMemoryOptions& options) {
   if (mesh.triangles.empty()) throw std::invalid_argument("memory estimate: the mesh has no triangles");
   const long long n0 = static_cast<long long>(mesh.triangles.size());
@@ -101,7 +101,9 @@ std::vector<LevelMemoryEstimate> estimate_levels_memory(const geometry::Triangle
       e.op = saturate(bytes);
     }
     SolverKind kind = solver.kind;
-    if (kind == SolverKind::automatic) kind = choose_solver(max_reflectivity);
+    // automatic may run either iteration (several channels start with Neumann and may continue
+    // with GMRES): the larger need, GMRES's basis.
+    if (kind == SolverKind::automatic) kind = SolverKind::gmres;
     switch (kind) {
       case SolverKind::lu:
         e.solver = add(e.op, saturate(3 * n * sizeof(double)));  // I - K_n factored in a copy

@@ -87,9 +87,9 @@ void RadiositySolver::setup() {
     info_.conditioning_reflectivity = rho_max;
     choose_parameters_and_plan();
   }
-  build_operator();
   info_.tolerance = options_.solver.tolerance > 0 ? options_.solver.tolerance
                                                   : discretization_tolerance(info_.mesh_size, info_.diameter);
+  build_operator();
 }
 
 // Steps 2-3: the parameters first, so that a size that cannot fit is refused before any work.
@@ -131,9 +131,20 @@ void RadiositySolver::discretize() {
   say(fmt("subdivision done in %.2f s", info_.subdivision_s));
 }
 
-std::unique_ptr<RadiosityOperator> RadiositySolver::make(const Collocation& rows, const OperatorOptions& op) {
-  stage_ = "building the operator (" + describe_parameters(op) + ")";
+std::unique_ptr<RadiosityOperator> RadiositySolver::make(const Collocation& rows, const OperatorOptions& parameters) {
+  stage_ = "building the operator (" + describe_parameters(parameters) + ")";
   stage_bytes_ = info_.memory.op;
+  OperatorOptions op = parameters;
+  {
+    // The products the solves will make, by expected_products with the ratio bound max rho (an
+    // upper bound): each channel's iteration and its irradiance product. The fast operator stores
+    // its far coefficients only when these repay their writing.
+    const double rho = info_.conditioning_reflectivity;
+    const ExpectedProducts e = expected_products(rho, rho, info_.tolerance);
+    const int channels = options_.fold_reflectivity ? 1 : static_cast<int>(scene_.num_channels());
+    const int per_channel = solver_kind(rho) == SolverKind::neumann ? e.neumann : e.gmres;
+    op.expected_products = per_channel > 0 ? channels * (per_channel + 1) : 0;
+  }
   // The operator's own stages (near field, far field) are named by its progress lines.
   return make_operator(rows, op, info_.visibility, [this](const std::string& line) {
     stage_ = "building the operator: " + line;
@@ -304,7 +315,7 @@ SolverOptions RadiositySolver::iteration_options(const std::string& label) const
 }
 
 SolverKind RadiositySolver::solver_kind(double max_rho) const {
-  return options_.solver.kind == SolverKind::automatic ? choose_solver(max_rho) : options_.solver.kind;
+  return options_.solver.kind == SolverKind::automatic ? choose_solver(max_rho, info_.tolerance) : options_.solver.kind;
 }
 
 namespace {
@@ -322,6 +333,16 @@ ChannelSolve channel_solve(SolveResult&& r) {
   out.seconds = r.seconds;
   return out;
 }
+
+// The Neumann steps after which solve_channels compares the channels' expected costs: the
+// ratio (36) is then measured over two successive steps.
+constexpr int kStepsBeforeChoice = 3;
+// The cost of each column of a block product beyond the first, in products of one column: the
+// stored far field is read once for all columns (FastOperator::apply_block). Measured, 2 threads:
+// 3 columns cost 1.35 single products on the Cornell box (n = 49,152, single-precision
+// coefficients; bench/visibility) and 1.77 on the cube (n = 49,152, double; bench/product):
+// 0.18 and 0.39 a column; the larger is taken.
+constexpr double kBlockColumnCost = 0.4;
 
 }  // namespace
 
@@ -359,13 +380,21 @@ std::vector<ChannelSolve> RadiositySolver::solve_channels(const std::vector<std:
     double max_rho;
     NeumannIteration iteration;
     Stopwatch clock;
+    bool handed = false;  // continued by GMRES (automatic)
   };
   std::vector<Iterating> group;
+  // automatic with several channels: Neumann steps them together (one block product a pass), and
+  // each channel is handed to GMRES once its measured ratio says that costs fewer products.
+  const bool automatic = options_.solver.kind == SolverKind::automatic;
+  const bool together = automatic && channels.size() >= 2;
+  std::vector<std::string> labels(channels.size());
   for (std::size_t s = 0; s < channels.size(); ++s) {
     const Collocation::ChannelValues v = channel_values(channels[s]);
     const std::string label = "channel " + scene_.channels()[channels[s]];
+    labels[s] = label;
     const double max_rho = v.rho.maxCoeff();
-    if (solver_kind(max_rho) != SolverKind::neumann) {
+    const bool neumann = together ? std::isfinite(max_rho) : solver_kind(max_rho) == SolverKind::neumann;
+    if (!neumann) {
       out[s] = solve_values(v.rho, v.E, label);
       out[s].irradiance = irradiance(out[s].u);
       continue;
@@ -381,7 +410,9 @@ std::vector<ChannelSolve> RadiositySolver::solve_channels(const std::vector<std:
     const auto finish = [&](Iterating& g) {
       SolveResult r = g.iteration.release();
       r.seconds = g.clock.seconds();
-      if (options_.solver.kind == SolverKind::automatic) r.choice = solver_choice(g.max_rho);
+      if (automatic)
+        r.choice = "auto: Neumann, " + std::to_string(group.size()) + " channels together (block products); " +
+                   fmt("measured ratio %.3g, ", r.convergence_ratio) + fmt("max rho %.3g", g.max_rho);
       Eigen::VectorXd irradiance = std::move(out[g.slot].irradiance);
       out[g.slot] = channel_solve(std::move(r));
       out[g.slot].irradiance = std::move(irradiance);
@@ -391,10 +422,37 @@ std::vector<ChannelSolve> RadiositySolver::solve_channels(const std::vector<std:
         finish(g);
         out[g.slot].irradiance = Eigen::VectorXd::Zero(info_.n);
       }
+    // Neumann's remaining products (each a share of a block pass of `columns` columns) against
+    // GMRES's from the current iterate, both by expected_products with the measured ratio (36);
+    // GMRES continues the channel when it costs less.
+    const auto hand_over = [&](Iterating& g, std::size_t columns) {
+      const NeumannIteration& it = g.iteration;
+      const double u_norm = it.next().lpNorm<Eigen::Infinity>();
+      if (!(u_norm > 0)) return;
+      const double reduction = it.step().lpNorm<Eigen::Infinity>() / u_norm;
+      const ExpectedProducts e = expected_products(it.ratio(), g.max_rho, info_.tolerance, reduction);
+      if (e.neumann <= 0 || e.gmres <= 0) return;
+      const double c = static_cast<double>(columns);
+      const double neumann_cost = e.neumann * (1 + kBlockColumnCost * (c - 1)) / c;
+      if (!(e.gmres < neumann_cost)) return;
+      const ScaledOperator K(*op_, g.rho);
+      Eigen::VectorXd previous = it.next() - it.step();  // u^(k), whose residual is the step
+      SolveResult r = solve_gmres_from(K, it.rhs(), iteration_options(labels[g.slot]), g.max_rho, std::move(previous),
+                                       it.step(), it.steps());
+      r.seconds = g.clock.seconds();
+      std::ostringstream why;
+      why << "auto: Neumann for " << it.steps() << " steps, then GMRES: measured ratio " << it.ratio()
+          << ", expected " << e.gmres << " more products against " << e.neumann << " Neumann steps in blocks of "
+          << columns << " (" << neumann_cost << " products' cost)";
+      r.choice = why.str();
+      out[g.slot] = channel_solve(std::move(r));
+      out[g.slot].irradiance = irradiance(out[g.slot].u);
+      g.handed = true;
+    };
     for (;;) {
       active.clear();
       for (std::size_t j = 0; j < group.size(); ++j)
-        if (!group[j].iteration.finished()) active.push_back(j);
+        if (!group[j].iteration.finished() && !group[j].handed) active.push_back(j);
       if (active.empty()) break;
       V.resize(info_.n, static_cast<Eigen::Index>(active.size()));
       for (std::size_t a = 0; a < active.size(); ++a) V.col(static_cast<Eigen::Index>(a)) = group[active[a]].iteration.next();
@@ -408,6 +466,9 @@ std::vector<ChannelSolve> RadiositySolver::solve_channels(const std::vector<std:
         if (last) {
           out[g.slot].irradiance = Hv;  // H u of the final u: the light arriving
           finish(g);
+        } else if (together && !g.iteration.finished() && !g.iteration.awaiting_residual() &&
+                   g.iteration.steps() == kStepsBeforeChoice) {
+          hand_over(g, active.size());
         }
       }
     }

@@ -154,8 +154,8 @@ void NeumannIteration::take(const Eigen::VectorXd& Kv) {
   }
   const int k = ++r_.iterations;
   Eigen::VectorXd next = E_ + Kv;
-  const Eigen::VectorXd step = next - u_;  // u^(k+1) - u^(k) = K (u^(k) - u^(k-1)), (35)
-  const double step_norm = inf_norm(step);
+  step_ = next - u_;  // u^(k+1) - u^(k) = K (u^(k) - u^(k-1)), (35)
+  const double step_norm = inf_norm(step_);
   u_ = std::move(next);
   const double q = previous_norm_ > 0 ? step_norm / previous_norm_ : 0;  // estimate of (36)
   r_.ratio_history.push_back(q);
@@ -197,24 +197,40 @@ SolveResult solve_neumann(const RadiosityOperator& K, const Eigen::VectorXd& E, 
 SolveResult solve_gmres(const RadiosityOperator& K, const Eigen::VectorXd& E, const SolverOptions& options,
                         double max_reflectivity) {
   check_sizes(K, E);
+  return solve_gmres_from(K, E, options, max_reflectivity, Eigen::VectorXd::Zero(E.size()), E);
+}
+
+SolveResult solve_gmres_from(const RadiosityOperator& K, const Eigen::VectorXd& E, const SolverOptions& options,
+                             double max_reflectivity, Eigen::VectorXd u, Eigen::VectorXd residual, int products) {
+  check_sizes(K, E);
+  if (u.size() != E.size() || residual.size() != E.size())
+    throw std::invalid_argument("solve_gmres_from: the initial iterate or its residual differs in size from n");
   Stopwatch clock;
   SolveResult r;
   r.solver = "gmres";
+  r.iterations = products;
   const Eigen::Index n = E.size();
   const int m = std::max(1, std::min<int>(options.gmres_restart, static_cast<int>(n)));
   // ||u - u_k||_inf <= ||(I-K)^-1||_inf ||res||_inf <= ||res||_inf / (1 - max rho)   (11)
   const double amplification = (max_reflectivity >= 0 && max_reflectivity < 1) ? 1.0 / (1.0 - max_reflectivity) : 1e3;
-  Eigen::VectorXd u = Eigen::VectorXd::Zero(n), Kv;
+  Eigen::VectorXd Kv;
   const double e_norm2 = E.norm();
   if (e_norm2 == 0) {
-    r.u = u;
+    r.u = Eigen::VectorXd::Zero(n);
     return r;
   }
   GmresCycle cycle(n, m);
+  bool residual_known = true;  // the first residual is given (u = 0: E itself, no product K 0)
   while (r.iterations < options.max_iterations) {
-    K.apply(u, Kv);
-    ++r.iterations;
-    Eigen::VectorXd res = E - u + Kv;
+    Eigen::VectorXd res;
+    if (residual_known) {
+      res = std::move(residual);
+      residual_known = false;
+    } else {
+      K.apply(u, Kv);
+      ++r.iterations;
+      res = E - u + Kv;
+    }
     const double res_inf = inf_norm(res);
     r.error_estimate = amplification * res_inf;
     if (options.progress) options.progress(r.iterations, r.error_estimate);
@@ -265,18 +281,44 @@ double discretization_tolerance(double h, double diameter) {
   return std::clamp(1e-5 * h / diameter, 1e-14, 1e-3);
 }
 
-SolverKind choose_solver(double max_reflectivity) {
-  return (max_reflectivity >= 0 && max_reflectivity <= 0.8) ? SolverKind::neumann : SolverKind::gmres;
+ExpectedProducts expected_products(double ratio, double max_reflectivity, double tolerance, double reduction) {
+  ExpectedProducts e;
+  if (!(ratio >= 0 && ratio < 1) || !(max_reflectivity >= 0 && max_reflectivity < 1) || !(tolerance > 0) ||
+      !(reduction > 0))
+    return e;  // unknown: 0 (no estimate)
+  const double q = std::max(ratio, 1e-3);
+  // Neumann: the bound q/(1-q) ||step|| of (35) with ||step_k|| ~ q^k ||step_0|| reaches
+  // tolerance ||u|| when q^(k+1) reduction / (1 - q) <= tolerance; one more product for the residual.
+  e.neumann = static_cast<int>(std::ceil(std::log(tolerance * (1 - q) / reduction) / std::log(q))) + 1;
+  // GMRES: K = diag(rho) H with H similar to a symmetric matrix (reciprocity A_i F_ij = A_j F_ji of
+  // the form factors, V symmetric), so the spectrum of I - K lies in [1 - q, 1 + q]; its residual
+  // falls at least by the Chebyshev rate (sqrt(k) - 1)/(sqrt(k) + 1), k = (1 + q)/(1 - q), up to a
+  // factor 2, to the bound tolerance (1 - max rho) ||u|| of (11); one product to check it.
+  const double kappa = (1 + q) / (1 - q);
+  const double rate = (std::sqrt(kappa) - 1) / (std::sqrt(kappa) + 1);
+  e.gmres = static_cast<int>(std::ceil(std::log(tolerance * (1 - max_reflectivity) / (2 * reduction)) / std::log(rate))) + 1;
+  e.neumann = std::max(e.neumann, 1);
+  e.gmres = std::max(e.gmres, 1);
+  return e;
 }
 
-std::string solver_choice(double max_reflectivity) {
+SolverKind choose_solver(double max_reflectivity, double tolerance) {
+  const ExpectedProducts e = expected_products(max_reflectivity, max_reflectivity, tolerance);
+  if (e.neumann <= 0 || e.gmres <= 0) return SolverKind::gmres;  // no bound on the ratio
+  return e.neumann <= e.gmres ? SolverKind::neumann : SolverKind::gmres;
+}
+
+std::string solver_choice(double max_reflectivity, double tolerance) {
   std::ostringstream os;
-  if (choose_solver(max_reflectivity) == SolverKind::neumann)
-    os << "auto: Neumann, since max rho = " << max_reflectivity << " <= 0.8 bounds its ratio (36)";
-  else if (max_reflectivity >= 0)
-    os << "auto: GMRES, since max rho = " << max_reflectivity << " > 0.8 would slow Neumann (ratio up to rho)";
-  else
-    os << "auto: GMRES, since rho varies by point and its maximum is unknown";
+  const ExpectedProducts e = expected_products(max_reflectivity, max_reflectivity, tolerance);
+  if (e.neumann <= 0 || e.gmres <= 0) {
+    os << "auto: GMRES, since rho varies by point and its maximum is unknown (no bound on Neumann's ratio)";
+    return os.str();
+  }
+  const bool neumann = choose_solver(max_reflectivity, tolerance) == SolverKind::neumann;
+  os << "auto: " << (neumann ? "Neumann" : "GMRES") << ", expected " << (neumann ? e.neumann : e.gmres)
+     << " products against " << (neumann ? e.gmres : e.neumann) << " for " << (neumann ? "GMRES" : "Neumann")
+     << " at max rho = " << max_reflectivity << ", tolerance " << tolerance;
   return os.str();
 }
 
@@ -284,9 +326,9 @@ SolveResult solve(const RadiosityOperator& K, const Eigen::VectorXd& E, const So
                   double max_reflectivity) {
   if (options.kind == SolverKind::automatic) {
     SolverOptions chosen = options;
-    chosen.kind = choose_solver(max_reflectivity);
+    chosen.kind = choose_solver(max_reflectivity, options.tolerance);
     SolveResult r = solve(K, E, chosen, max_reflectivity);
-    r.choice = solver_choice(max_reflectivity);
+    r.choice = solver_choice(max_reflectivity, options.tolerance);
     return r;
   }
   switch (options.kind) {

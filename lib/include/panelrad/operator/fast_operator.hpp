@@ -40,6 +40,10 @@ struct FastOptions : ClusteringParameters {
   /// Far-field coefficients are stored when they take at most this many bytes (0: automatic,
   /// half of the available memory); otherwise they are recomputed in every product.
   std::size_t far_storage_limit = 0;
+  /// The products the caller expects to make (0: unknown). When known, the coefficients are stored
+  /// only if that many products repay writing them: expected x (recompute - read) > fill, per pair,
+  /// by far_field_costs(); else they are recomputed in each product (bit-identical in double).
+  int expected_products = 0;
   /// Setup is refused (std::runtime_error with the estimate) before any large allocation when
   /// its estimated peak memory exceeds this many bytes (0: the memory available).
   std::size_t memory_limit = 0;
@@ -65,6 +69,18 @@ struct FastOptions : ClusteringParameters {
   /// bit (each row is computed independently of the others), at the cost of those rows alone.
   int probe_samples = 0;
 };
+
+/// The cost model of storing against recomputing the far coefficients (44)-(45), per (point,
+/// cluster) pair in nanoseconds of one core, from the measurements in fast_operator.cpp.
+struct FarFieldCosts {
+  double recompute_ns = 0;  ///< computing one pair's coefficients (kernel_taylor_coefficients)
+  double fill_ns = 0;       ///< computing and writing them once at setup (first touch of new memory)
+  double read_ns = 0;       ///< reading them back in a product
+  /// Whether `products` products repay storing: products x (recompute - read) > fill.
+  bool store_pays(int products) const { return products * (recompute_ns - read_ns) > fill_ns; }
+};
+/// The model for degree M with coefficients of `bytes_per_term` bytes (8 double, 4 float).
+FarFieldCosts far_field_costs(int degree, std::size_t bytes_per_term);
 
 /// What setup found and stored: the covering's counts (over the rows held).
 struct FastStatistics {

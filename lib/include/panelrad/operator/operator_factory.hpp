@@ -53,6 +53,9 @@ VisibilityWork visibility_work(const RadiosityOperator& op);
 struct OperatorOptions : ClusteringParameters {
   OperatorMethod method = OperatorMethod::dense;  ///< dense | fast (automatic is not an operator)
   NearFieldOptions near;                          ///< near-field rule (dense: every entry)
+  /// Products the solver expects (0: unknown): the fast operator stores its far coefficients only
+  /// when they repay their writing (FastOptions::expected_products).
+  int expected_products = 0;
   bool operator==(const OperatorOptions&) const = default;
 };
 

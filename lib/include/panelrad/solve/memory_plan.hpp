@@ -71,7 +71,7 @@ std::vector<LevelMemoryEstimate> estimate_levels_memory(const geometry::Triangle
                                                         const LevelMemoryOptions& options = {});
 
 /// The estimate for `mesh` refined `level` times with operator `op` and solver `solver`
-/// (automatic: resolved with `max_reflectivity` as solve() does).
+/// (automatic: GMRES's need, the larger, since it may run; `max_reflectivity` is kept for callers).
 LevelMemoryEstimate estimate_level_memory(const geometry::TriangleMesh& mesh, int level, const OperatorOptions& op,
                                           const SolverOptions& solver, double max_reflectivity,
                                           const LevelMemoryOptions& options = {});

@@ -14,9 +14,11 @@
 
 namespace panelrad {
 
-/// automatic: Neumann while the contraction bound max rho (paper (10)) is at most 0.8 (each step
-/// then gains at least a factor 1.25 and the ratio (36) is reported), GMRES above (Neumann's
-/// step count grows like 1/(1 - rho), GMRES's stays bounded).
+/// automatic: the solver of fewer expected products (expected_products): GMRES for one equation
+/// (its residual is the least over the Krylov space that holds Neumann's iterate, and the bound
+/// of its rate is below Neumann's for every rho < 1), unless Neumann's bound is no larger; with
+/// several channels (RadiositySolver::solve_channels) Neumann steps them together through one block
+/// product until their measured ratios (36) say GMRES costs less.
 enum class SolverKind { automatic, neumann, gmres, lu };
 SolverKind parse_solver(const std::string& name);  ///< "auto" | "neumann" | "gmres" | "lu"
 const char* to_string(SolverKind kind);
@@ -74,6 +76,13 @@ class NeumannIteration {
   bool awaiting_residual() const { return phase_ == Phase::residual; }
   /// u^(k) while iterating; the final u while the residual's product is awaited.
   const Eigen::VectorXd& next() const { return u_; }
+  /// Steps taken, the latest ratio (36) and the latest step u^(k+1) - u^(k) = E - (I - K) u^(k):
+  /// the residual of the previous iterate u^(k) = next() - step(), for handing the equation to
+  /// another solver (solve_gmres_from) without a product.
+  int steps() const { return r_.iterations; }
+  double ratio() const { return ratio_; }
+  const Eigen::VectorXd& step() const { return step_; }
+  const Eigen::VectorXd& rhs() const { return E_; }
   /// Advances with Kv = K next(); SolverError when an iterate is not finite.
   void take(const Eigen::VectorXd& Kv);
   /// The result once finished() (seconds not set).
@@ -83,7 +92,7 @@ class NeumannIteration {
  private:
   enum class Phase { iterating, residual, finished };
   void stop(SolveStatus status);
-  Eigen::VectorXd E_, u_;
+  Eigen::VectorXd E_, u_, step_;
   SolverOptions options_;
   SolveResult r_;
   Phase phase_ = Phase::iterating;
@@ -91,9 +100,14 @@ class NeumannIteration {
 };
 
 /// Restarted GMRES on (I - K) u = E; stops on the relative residual, mapped to an error bound
-/// with ||(I-K)^-1|| <= 1/(1 - max rho) (paper (11)).
+/// with ||(I-K)^-1|| <= 1/(1 - max rho) (paper (11)). From u = 0, whose residual E needs no product.
 SolveResult solve_gmres(const RadiosityOperator& K, const Eigen::VectorXd& E, const SolverOptions& options,
                         double max_reflectivity);
+/// The same from the iterate u whose residual E - (I - K) u is `residual` (known, so no product),
+/// after `products` products already made (counted in the result's iterations and against
+/// options.max_iterations).
+SolveResult solve_gmres_from(const RadiosityOperator& K, const Eigen::VectorXd& E, const SolverOptions& options,
+                             double max_reflectivity, Eigen::VectorXd u, Eigen::VectorXd residual, int products = 0);
 /// Dense LU with partial pivoting of I - K_n (Eigen).
 SolveResult solve_lu(const DenseOperator& K, const Eigen::VectorXd& E);
 
@@ -102,11 +116,24 @@ SolveResult solve_lu(const DenseOperator& K, const Eigen::VectorXd& E);
 /// 1e-5 h/diam keeps the iteration error near 0.03% of it. h: mesh size, diam: surface diameter.
 double discretization_tolerance(double h, double diameter);
 
-/// The solver `automatic` resolves to for this largest reflectivity (NaN: unknown -> GMRES).
-SolverKind choose_solver(double max_reflectivity);
+/// Products each iteration is expected to need, from the ratio q of Neumann's steps (36) (at most
+/// max rho by (10); measured once Neumann has taken a few steps), max rho and the tolerance, for
+/// reducing the error from `reduction` (the current ||residual|| / ||u||; 1 at the start) to the
+/// tolerance, the final residual's product included (see solvers.cpp for the bounds).
+/// 0 where no estimate exists (q or max rho not in [0, 1), tolerance or reduction not positive).
+struct ExpectedProducts {
+  int neumann = 0;
+  int gmres = 0;
+};
+ExpectedProducts expected_products(double ratio, double max_reflectivity, double tolerance, double reduction = 1);
 
-/// Why `automatic` chose choose_solver(max_reflectivity): the text of SolveResult::choice.
-std::string solver_choice(double max_reflectivity);
+/// The solver `automatic` resolves to for one equation: the fewer expected_products with the
+/// ratio bound max rho (NaN: unknown -> GMRES).
+SolverKind choose_solver(double max_reflectivity, double tolerance);
+
+/// Why `automatic` chose choose_solver(max_reflectivity, tolerance): the text of
+/// SolveResult::choice, with both expected counts.
+std::string solver_choice(double max_reflectivity, double tolerance);
 
 /// Dispatch on options.kind; LU needs a DenseOperator (std::invalid_argument otherwise).
 SolveResult solve(const RadiosityOperator& K, const Eigen::VectorXd& E, const SolverOptions& options,
