@@ -532,10 +532,10 @@ class HierarchicalIntegrator {
 // from the foot of F, the angle is theta = gd(w) (dtheta = sech w dw) and L = d cosh w. In w the
 // angular integrand is analytic in the strip |Im w| < pi/2 whatever d / a and d / |edge| (the
 // singularities of L^2 + h^2 = 0, of sech w, of atan(L/a) and of ln(L^2 + h^2) all lie on
-// Im w = pi/2), so that adaptive Gauss-Kronrod converges fast also when F is close to an edge
-// line or a vertex (P close to the triangle's edge).
+// Im w = +-pi/2), so that Gauss-Legendre panels (gauss_panels) converge fast also when F is
+// close to an edge line or a vertex (P close to the triangle's edge).
 
-// The radial integrals above, by their power series for x < 1/2 (the closed forms cancel there:
+// The radial integrals above, by their power series for x < 0.2 (the closed forms cancel there:
 // a J_2 ~ x^3/3, J_3 ~ x^4/4, J_4 / a ~ x^5/5).
 struct RadialIntegrals {
   double a2J1, aJ2, J3, J4_a;
