@@ -8,10 +8,12 @@
 #include <charconv>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace panelrad {
 
@@ -229,12 +231,54 @@ double Scene::manufactured_emissivity(const Vec3& P, Index facet, const Vec3& nP
   // P and contribute 0 (section 4.2, case (a)); a triangle of another facet that is coplanar
   // with P only up to the rounding of the coordinates (a slanted rectangle given as two
   // triangles) is integrated and gives a value at the rounding level (integrate_kernel_times).
+  // Where u is quadratic on a facet, the facet is integrated at once over its boundary with the
+  // radial integral in closed form (integrate_kernel_times_quadratic_facet); other facets
+  // triangle by triangle, in the triangles' order.
+  const SurfaceFunction& sol = solution_;
+  std::vector<Index> facets;              // the other facets, by their first triangle
+  std::vector<std::size_t> first_triangle;  // whose inner normal is the facet's
+  std::vector<std::vector<std::array<Index, 3>>> facet_triangles;
+  std::vector<std::size_t> slot(mesh_.triangles.size());
+  {
+    std::vector<std::size_t> facet_slot(static_cast<std::size_t>(num_facets()), mesh_.triangles.size());
+    for (std::size_t t = 0; t < mesh_.triangles.size(); ++t) {
+      const Index ft = mesh_.facet_of_triangle[t];
+      if (ft == facet) continue;
+      std::size_t& k = facet_slot[static_cast<std::size_t>(ft)];
+      if (k == mesh_.triangles.size()) {
+        k = facets.size();
+        facets.push_back(ft);
+        first_triangle.push_back(t);
+        facet_triangles.emplace_back();
+      }
+      facet_triangles[k].push_back(mesh_.triangles[t]);
+      slot[t] = k;
+    }
+  }
+  std::vector<std::optional<double>> facet_Ku(facets.size());
+  for (std::size_t k = 0; k < facets.size(); ++k) {
+    const Index ft = facets[k];
+    const auto f = [&sol, ft](const Vec3& Q) { return sol(Q, ft); };
+    try {
+      const auto r = quadrature::integrate_kernel_times_quadratic_facet(
+          f, P, nP, mesh_.vertices, facet_triangles[k],
+          triangle_inner_normal(static_cast<Index>(first_triangle[k])), solution_tol_);
+      if (r) facet_Ku[k] = r->value;
+    } catch (const std::exception&) {
+      // u failed on this facet: the triangle-by-triangle integration below reports it
+    }
+  }
   double Ku = 0;
+  std::vector<char> added(facets.size(), 0);
   for (std::size_t t = 0; t < mesh_.triangles.size(); ++t) {
     const Index ft = mesh_.facet_of_triangle[t];
     if (ft == facet) continue;
+    if (const auto& fk = facet_Ku[slot[t]]) {
+      if (!added[slot[t]]) Ku += *fk;
+      added[slot[t]] = 1;
+      continue;
+    }
     const auto& tri = mesh_.triangles[t];
-    const SurfaceFunction& sol = solution_;
     const auto f = [&sol, ft](const Vec3& Q) { return sol(Q, ft); };
     try {
       Ku += quadrature::integrate_kernel_times(
