@@ -5,11 +5,12 @@
 // kernel_taylor_coefficients runs in the lanes, and each lane's Taylor terms are summed with the
 // moments m_t(tau_w) of (47).
 //
-// The sums of a row. Lane w of accumulator set s holds the running sum, over the pairs of the
-// row it is given, of sum_t c_t m_t, the terms t in order 0..T-1, each term one multiply-add
-// acc = c_t m_t + acc. The caller gives pair j of a row (in the row's far-field order) to lane
-// j mod kFarFieldLanes of set (j / kFarFieldLanes) mod 2, and adds the 2 x kFarFieldLanes sums
-// in a fixed order at the end: every column of a block of C columns gets exactly the operations
+// The sums of a row. Partial sum r of lane w of accumulator set s holds the running sum, over
+// the pairs of the row it is given, of the terms c_t m_t with t = r mod 4, in order of t, each
+// term one multiply-add acc = c_t m_t + acc (4 partial sums: independent chains). The caller
+// gives pair j of a row (in the row's far-field order) to lane j mod kFarFieldLanes of set
+// (j / kFarFieldLanes) mod 2, and adds the 2 x 4 x kFarFieldLanes sums in a fixed order at the
+// end (RowSums::total): every column of a block of C columns gets exactly the operations
 // of the one-column product, in the same order, on any thread, so a block product's column is
 // bit-identical to the product of that column alone, for any thread count.
 //
@@ -35,6 +36,12 @@ namespace panelrad::far_field_batch {
 inline constexpr int kLanes = 4;
 inline constexpr int kMaxDegree = 12;
 inline constexpr int kMaxTerms = (kMaxDegree + 1) * (kMaxDegree + 2) / 2;
+/// Partial sums per lane (term t into partial sum t mod kPartialSums: independent chains of
+/// multiply-adds), and columns (series) per partial sum.
+inline constexpr int kPartialSums = 4;
+inline constexpr int kSeries = 4;
+/// Doubles of one accumulator set: kPartialSums x kSeries columns x kLanes lanes.
+inline constexpr int kSetSize = kPartialSums * kSeries * kLanes;
 
 /// The row's side of the pairs: P_i in the far field's length unit, n_P, and the factor rho_i/pi
 /// that multiplies the Taylor coefficients of the product (the rho-scaled coefficients).
@@ -48,8 +55,8 @@ struct FrameLanes {
   alignas(32) double v[12][kLanes];
 };
 
-/// The kernels of one instruction set. acc holds C x kLanes running sums, column c of lane w at
-/// acc[c * kLanes + w]; m[w] the moments of lane w's cluster, C columns interleaved (term t of
+/// The kernels of one instruction set. acc holds an accumulator set (kSetSize running sums):
+/// partial sum r of column c of lane w at acc[(r kSeries + c) kLanes + w]; m[w] the moments of lane w's cluster, C columns interleaved (term t of
 /// column c at m[w][t * C + c]). Lanes without a pair get the moments of zero (and any valid
 /// frame or zero coefficients): they add +0 to their sums.
 struct Kernels {
@@ -76,14 +83,21 @@ const Kernels& kernels();
 /// Zeros for kMaxTerms terms x 4 columns: the moments of a lane without a pair.
 extern const double kZeroMoments[kMaxTerms * 4];
 
-/// The far-field sums of one row for up to 4 columns: set s, column c, lane w at v[s][c kLanes + w].
+/// The far-field sums of one row for up to kSeries columns, in 2 accumulator sets.
 struct RowSums {
-  double v[2][4 * kLanes] = {};
-  /// Column c's far field (47): the 2 x kLanes sums added in a fixed order.
+  alignas(32) double v[2][kSetSize] = {};
+  /// Column c's far field (47): the 2 x kPartialSums x kLanes sums added in a fixed order.
   double total(int c) const {
-    const double* a = v[0] + c * kLanes;
-    const double* b = v[1] + c * kLanes;
-    return ((a[0] + a[1]) + (a[2] + a[3])) + ((b[0] + b[1]) + (b[2] + b[3]));
+    double set[2];
+    for (int s = 0; s < 2; ++s) {
+      double partial[kPartialSums];
+      for (int r = 0; r < kPartialSums; ++r) {
+        const double* a = v[s] + (r * kSeries + c) * kLanes;
+        partial[r] = (a[0] + a[1]) + (a[2] + a[3]);
+      }
+      set[s] = (partial[0] + partial[1]) + (partial[2] + partial[3]);
+    }
+    return set[0] + set[1];
   }
 };
 

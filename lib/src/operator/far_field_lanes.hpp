@@ -130,38 +130,44 @@ template <int M>
   return true;
 }
 
-// acc[k * kLanes + w] += sum_t c[t][w] m[w][t C + k], column k, the terms t in order, one
-// multiply-add each (the order of far_field_batch.hpp), in vectors over the lanes. The moments of
-// the 4 lanes are read 4 consecutive doubles at a time and transposed: L = lcm(4, C) doubles of
-// each lane make a group of L / C terms of all C columns, whose columns and terms are known at
-// compile time.
+// Column k, lane w, partial sum r: acc[(r kSeries + k) kLanes + w] += sum over the terms
+// t = r mod kPartialSums of c[t][w] m[w][t C + k], t in order, one multiply-add each (the order
+// of far_field_batch.hpp), in vectors over the lanes. The moments of the 4 lanes are read 4
+// consecutive doubles at a time and transposed: 4 terms of all C columns are C such reads, whose
+// columns and terms are known at compile time.
 template <int C>
 [[gnu::always_inline]] inline void add_terms(int T, const double* const* m, double* acc, const V* c) {
-  constexpr int L = C == 3 ? 12 : 4;
-  constexpr int group_terms = L / C;
-  V a[C];
-  for (int k = 0; k < C; ++k) a[k] = load(acc + k * kLanes);
-  const int grouped = T - T % group_terms;
-  for (int t = 0; t < grouped; t += group_terms) {
+  static_assert(kPartialSums == 4, "4 terms per group, one per partial sum");
+  V a[kPartialSums][C];
+  for (int r = 0; r < kPartialSums; ++r)
+    for (int k = 0; k < C; ++k) a[r][k] = load(acc + (r * kSeries + k) * kLanes);
+  const int grouped = T - T % 4;
+  for (int t = 0; t < grouped; t += 4) {
     const int base = t * C;
-#pragma GCC unroll 3
-    for (int g = 0; g < L / 4; ++g) {
+#pragma GCC unroll 4
+    for (int g = 0; g < C; ++g) {
       V col[4];
       const int at = base + 4 * g;
       transpose(load(m[0] + at), load(m[1] + at), load(m[2] + at), load(m[3] + at), col);
 #pragma GCC unroll 4
       for (int k = 0; k < 4; ++k) {
-        const int f = 4 * g + k;  // t C + column within the group
-        a[f % C] = madd(c[t + f / C], col[k], a[f % C]);
+        const int f = 4 * g + k;  // (term - t) C + column
+        a[f / C][f % C] = madd(c[t + f / C], col[k], a[f / C][f % C]);
       }
     }
   }
-  for (int t = grouped; t < T; ++t)
+  const auto tail = [&](int r) {
+    const int t = grouped + r;
     for (int k = 0; k < C; ++k) {
       const int f = t * C + k;
-      a[k] = madd(c[t], V{m[0][f], m[1][f], m[2][f], m[3][f]}, a[k]);
+      a[r][k] = madd(c[t], V{m[0][f], m[1][f], m[2][f], m[3][f]}, a[r][k]);
     }
-  for (int k = 0; k < C; ++k) store(acc + k * kLanes, a[k]);
+  };
+  if (T - grouped > 0) tail(0);
+  if (T - grouped > 1) tail(1);
+  if (T - grouped > 2) tail(2);
+  for (int r = 0; r < kPartialSums; ++r)
+    for (int k = 0; k < C; ++k) store(acc + (r * kSeries + k) * kLanes, a[r][k]);
 }
 
 template <int M>

@@ -477,10 +477,10 @@ void FastOperator::apply_row_columns(Index i, const double* v, const double* mom
       throw std::invalid_argument("FastOperator: collocation point " + std::to_string(i) +
                                   " coincides with the centre A(tau) of a far cluster or is not finite");
   } else if (options_.single_precision_coefficients) {
-    far_field_batch::add_stored_row(kernels, &far_coef_single_[static_cast<std::size_t>(first) * static_cast<std::size_t>(terms_)],
+    far_field_batch::add_stored_row(kernels, far_coef_single_.data() + static_cast<std::size_t>(first) * static_cast<std::size_t>(terms_),
                                     terms_, clusters, count, moments, C, sums);
   } else {
-    far_field_batch::add_stored_row(kernels, &far_coef_[static_cast<std::size_t>(first) * static_cast<std::size_t>(terms_)],
+    far_field_batch::add_stored_row(kernels, far_coef_.data() + static_cast<std::size_t>(first) * static_cast<std::size_t>(terms_),
                                     terms_, clusters, count, moments, C, sums);
   }
   for (int c = 0; c < C; ++c) out[c] = near[c] + sums.total(c);
