@@ -36,6 +36,19 @@ const Kernels& kernels() {
   return *chosen;
 }
 
+double RowSums::total(int c) const {
+  double set[2];
+  for (int s = 0; s < 2; ++s) {
+    double partial[kPartialSums];
+    for (int r = 0; r < kPartialSums; ++r) {
+      const double* a = v[s] + (r * kSeries + c) * kLanes;
+      partial[r] = (a[0] + a[1]) + (a[2] + a[3]);
+    }
+    set[s] = (partial[0] + partial[1]) + (partial[2] + partial[3]);
+  }
+  return set[0] + set[1];
+}
+
 namespace {
 
 // Frame of lane w = frames[w] (w < count), the other lanes a copy of lane 0 (a valid frame).

@@ -19,9 +19,9 @@
 // one fused, singly rounded operation), the latter chosen once at run time when the CPU has both.
 // The two differ from each other by rounding (the fused operations); each is deterministic
 // (floating-point contraction is off in both, every fusion is explicit).
-// This header is free of Eigen and of the standard library, so that the kernels' translation
-// units, compiled for other instruction sets, share no inline function with the rest of the
-// program (the linker keeps one copy of each, which must run on any x86-64).
+// This header is free of Eigen, of the standard library and of inline functions, so that the
+// kernels' translation units, compiled for other instruction sets, share no inline function with
+// the rest of the program (the linker keeps one copy of each, which must run on any x86-64).
 
 #include <cstdint>
 
@@ -56,8 +56,8 @@ struct FrameLanes {
 };
 
 /// The kernels of one instruction set. acc holds an accumulator set (kSetSize running sums):
-/// partial sum r of column c of lane w at acc[(r kSeries + c) kLanes + w]; m[w] the moments of lane w's cluster, C columns interleaved (term t of
-/// column c at m[w][t * C + c]). Lanes without a pair get the moments of zero (and any valid
+/// partial sum r of column c of lane w at acc[(r kSeries + c) kLanes + w]; m[w] the moments of
+/// lane w's cluster, C columns interleaved (term t of column c at m[w][t * C + c]). Lanes without a pair get the moments of zero (and any valid
 /// frame or zero coefficients): they add +0 to their sums.
 struct Kernels {
   const char* name;
@@ -86,19 +86,9 @@ extern const double kZeroMoments[kMaxTerms * 4];
 /// The far-field sums of one row for up to kSeries columns, in 2 accumulator sets.
 struct RowSums {
   alignas(32) double v[2][kSetSize] = {};
-  /// Column c's far field (47): the 2 x kPartialSums x kLanes sums added in a fixed order.
-  double total(int c) const {
-    double set[2];
-    for (int s = 0; s < 2; ++s) {
-      double partial[kPartialSums];
-      for (int r = 0; r < kPartialSums; ++r) {
-        const double* a = v[s] + (r * kSeries + c) * kLanes;
-        partial[r] = (a[0] + a[1]) + (a[2] + a[3]);
-      }
-      set[s] = (partial[0] + partial[1]) + (partial[2] + partial[3]);
-    }
-    return set[0] + set[1];
-  }
+  /// Column c's far field (47): the 2 x kPartialSums x kLanes sums added in a fixed order
+  /// (out of line, like every function declared here: see the note at the top).
+  double total(int c) const;
 };
 
 /// The rho-scaled Taylor coefficients of the single pair (row, frame), T values in c: lane 0 of

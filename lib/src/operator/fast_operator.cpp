@@ -470,18 +470,17 @@ void FastOperator::apply_row_columns(Index i, const double* v, const double* mom
   const std::int64_t first = far_start_[r], count = far_start_[r + 1] - first;
   const Index* clusters = far_cluster_.data() + first;
   const far_field_batch::Kernels& kernels = far_field_batch::kernels();
+  const std::size_t at = static_cast<std::size_t>(first) * static_cast<std::size_t>(terms_);  // pair's coefficients
   far_field_batch::RowSums sums;
   if (!stats_.far_stored) {
-    if (!far_field_batch::add_recomputed_row(kernels, options_.degree, far_row_point(i), frame_.data(), clusters, count, moments,
-                                             C, sums))
+    if (!far_field_batch::add_recomputed_row(kernels, options_.degree, far_row_point(i), frame_.data(), clusters,
+                                             count, moments, C, sums))
       throw std::invalid_argument("FastOperator: collocation point " + std::to_string(i) +
                                   " coincides with the centre A(tau) of a far cluster or is not finite");
   } else if (options_.single_precision_coefficients) {
-    far_field_batch::add_stored_row(kernels, far_coef_single_.data() + static_cast<std::size_t>(first) * static_cast<std::size_t>(terms_),
-                                    terms_, clusters, count, moments, C, sums);
+    far_field_batch::add_stored_row(kernels, far_coef_single_.data() + at, terms_, clusters, count, moments, C, sums);
   } else {
-    far_field_batch::add_stored_row(kernels, far_coef_.data() + static_cast<std::size_t>(first) * static_cast<std::size_t>(terms_),
-                                    terms_, clusters, count, moments, C, sums);
+    far_field_batch::add_stored_row(kernels, far_coef_.data() + at, terms_, clusters, count, moments, C, sums);
   }
   for (int c = 0; c < C; ++c) out[c] = near[c] + sums.total(c);
 }
