@@ -18,7 +18,10 @@
 // is a product rounded, then a sum rounded) and, on x86-64, for AVX2 + FMA (the multiply-add is
 // one fused, singly rounded operation), the latter chosen once at run time when the CPU has both.
 // The two differ from each other by rounding (the fused operations); each is deterministic
-// (floating-point contraction is off in both, every fusion is explicit).
+// (floating-point contraction is off in both, every fusion is explicit). The kernels need only
+// vectors of 4 doubles, shuffles, sqrt and FMA, which the GCC/Clang vector extensions give in one
+// source for both builds; a build per translation unit and __builtin_cpu_supports do the
+// dispatch without a SIMD library among the dependencies.
 // This header is free of Eigen, of the standard library and of inline functions, so that the
 // kernels' translation units, compiled for other instruction sets, share no inline function with
 // the rest of the program (the linker keeps one copy of each, which must run on any x86-64).
