@@ -1,5 +1,6 @@
 #include <panelrad/operator/fast_operator.hpp>
 
+#include "far_field_batch.hpp"
 #include "visible_covering.hpp"
 #include <panelrad/geometry/admissibility.hpp>
 #include <panelrad/operator/kernel.hpp>
@@ -422,12 +423,21 @@ std::pair<int, Index> FastOperator::cluster_of_id(Index id) const {
   return {level, id - level_offset_[static_cast<std::size_t>(level)]};
 }
 
-// rho(P_i)/pi times the Taylor coefficients of G(P_i, .) about A(tau), (44)-(45).
+// rho(P_i)/pi times the Taylor coefficients of G(P_i, .) about A(tau), (44)-(45): the stored
+// coefficients, computed by the kernels of the recomputing product (far_field_batch.hpp), so
+// that a product with stored double coefficients is bit-identical to one that recomputes them.
+far_field_batch::RowPoint FastOperator::far_row_point(Index i) const {
+  const Vec3 P = unit_scale_ * point_[static_cast<std::size_t>(i)];
+  const Vec3& nP = normal_[static_cast<std::size_t>(i)];
+  return {{P[0], P[1], P[2]}, {nP[0], nP[1], nP[2]}, rho_[static_cast<std::size_t>(i)] / pi};
+}
+
 void FastOperator::far_coefficients(Index i, Index cluster, double* c) const {
-  kernel_taylor_coefficients(unit_scale_ * point_[static_cast<std::size_t>(i)], normal_[static_cast<std::size_t>(i)],
-                             frame_[static_cast<std::size_t>(cluster)], options_.degree, c);
-  const double scale = rho_[static_cast<std::size_t>(i)] / pi;
-  for (int t = 0; t < terms_; ++t) c[t] *= scale;
+  if (!far_field_batch::pair_coefficients(far_field_batch::kernels(), options_.degree, far_row_point(i),
+                                          frame_[static_cast<std::size_t>(cluster)], c))
+    throw std::invalid_argument("FastOperator: collocation point " + std::to_string(i) +
+                                " coincides with the centre A(tau) of far cluster " + std::to_string(cluster) +
+                                " or is not finite");
 }
 
 // Moments Int_tau v_n(Q) x^p y^q dS about A(tau) for every cluster (48): exact per element, then
@@ -459,58 +469,40 @@ void FastOperator::compute_moments(const Eigen::VectorXd& v, std::vector<double>
   }
 }
 
-namespace {
-
-// sum[c] += sum_t coef[t] m[t C + c], (47), t in order for every column c; the coefficients in
-// double or single precision (widened exactly to double before the product).
-template <int C, class Coef>
-inline void add_far_terms(const Coef* coef, const double* m, std::size_t T, double* sum) {
-  if constexpr (C % 2 == 0) {
-    // Packets of columns (Eigen's SIMD arithmetic is the scalar IEEE arithmetic, lane by lane).
-    using Packet = Eigen::Array<double, C, 1>;
-    Packet acc = Eigen::Map<const Packet>(sum);
-    for (std::size_t t = 0; t < T; ++t) acc += static_cast<double>(coef[t]) * Eigen::Map<const Packet>(m + t * C);
-    Eigen::Map<Packet> sums(sum);
-    sums = acc;
-  } else {
-    for (std::size_t t = 0; t < T; ++t)
-      for (int c = 0; c < C; ++c) sum[c] += static_cast<double>(coef[t]) * m[t * C + c];
-  }
-}
-
-}  // namespace
-
 // Row i (held) of the fast product (43) for C vectors, from their cluster moments: near field plus
 // far field (47). v and moments hold the C columns interleaved (entry j of column c at j C + c), so
-// that the C sums advance together, in SIMD registers where the compiler can. Each column's sum
-// runs over the same terms in the same order as for C = 1, so that a column of a block product is
-// bit-identical to the product of that column alone; the lists and far coefficients are read once
-// for all C.
+// that the C sums advance together; the lists and far coefficients are read once for all C. The
+// far pairs go kFarFieldLanes at a time through the SIMD kernels of far_field_batch.hpp, which
+// fix the order of every column's sums independently of C: a column of a block product is
+// bit-identical to the product of that column alone, for any thread count. The coefficients are
+// the stored ones (double or float, widened exactly) or recomputed in the lanes.
 template <int C>
-void FastOperator::apply_row_columns(Index i, const double* v, const double* moments, double* scratch,
+void FastOperator::apply_row_columns(Index i, const double* v, const double* moments, double* /*scratch*/,
                                      double* out) const {
-  const std::size_t T = static_cast<std::size_t>(terms_);
   const std::size_t r = static_cast<std::size_t>(i - row_begin_);
-  double sum[C];
-  for (int c = 0; c < C; ++c) sum[c] = 0;
+  double near[C];
+  for (int c = 0; c < C; ++c) near[c] = 0;
   for (std::int64_t j = near_start_[r]; j < near_start_[r + 1]; ++j) {
     const double k = near_val_[static_cast<std::size_t>(j)];
     const double* vj = v + static_cast<std::size_t>(near_col_[static_cast<std::size_t>(j)]) * C;
-    for (int c = 0; c < C; ++c) sum[c] += k * vj[c];
+    for (int c = 0; c < C; ++c) near[c] += k * vj[c];
   }
-  for (std::int64_t j = far_start_[r]; j < far_start_[r + 1]; ++j) {
-    const Index cl = far_cluster_[static_cast<std::size_t>(j)];
-    const double* m = moments + static_cast<std::size_t>(cl) * T * C;
-    if (!stats_.far_stored) {
-      far_coefficients(i, cl, scratch);
-      add_far_terms<C>(scratch, m, T, sum);
-    } else if (options_.single_precision_coefficients) {
-      add_far_terms<C>(&far_coef_single_[static_cast<std::size_t>(j) * T], m, T, sum);
-    } else {
-      add_far_terms<C>(&far_coef_[static_cast<std::size_t>(j) * T], m, T, sum);
-    }
+  const std::int64_t first = far_start_[r], count = far_start_[r + 1] - first;
+  const Index* clusters = far_cluster_.data() + first;
+  const far_field_batch::Kernels& kernels = far_field_batch::kernels();
+  const std::size_t at = static_cast<std::size_t>(first) * static_cast<std::size_t>(terms_);  // pair's coefficients
+  far_field_batch::RowSums sums;
+  if (!stats_.far_stored) {
+    if (!far_field_batch::add_recomputed_row(kernels, options_.degree, far_row_point(i), frame_.data(), clusters,
+                                             count, moments, C, sums))
+      throw std::invalid_argument("FastOperator: collocation point " + std::to_string(i) +
+                                  " coincides with the centre A(tau) of a far cluster or is not finite");
+  } else if (options_.single_precision_coefficients) {
+    far_field_batch::add_stored_row(kernels, far_coef_single_.data() + at, terms_, clusters, count, moments, C, sums);
+  } else {
+    far_field_batch::add_stored_row(kernels, far_coef_.data() + at, terms_, clusters, count, moments, C, sums);
   }
-  for (int c = 0; c < C; ++c) out[c] = sum[c];
+  for (int c = 0; c < C; ++c) out[c] = near[c] + sums.total(c);
 }
 
 double FastOperator::apply_row(Index i, const Eigen::VectorXd& v, const std::vector<double>& moments,

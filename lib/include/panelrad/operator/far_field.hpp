@@ -47,6 +47,27 @@ PlaneFrame make_plane_frame(const Vec3& origin, const Vec3& normal);
 void kernel_taylor_coefficients(const Vec3& P, const Vec3& nP, const PlaneFrame& frame, int M,
                                 double* c);
 
+/// Far pairs of one row whose coefficients the fast product computes at once, in SIMD lanes.
+inline constexpr int kFarFieldLanes = 4;
+
+/// The instruction set of the far-field lanes: `best`, the one the fast product uses (AVX2 +
+/// FMA on an x86-64 CPU that has both, else the baseline), or the baseline one the build targets
+/// (on x86-64: SSE2). The two differ by rounding: AVX2 + FMA fuses each multiply-add.
+enum class FarFieldInstructions { best, baseline };
+
+/// "avx2+fma" or "baseline": what `which` stands for on this CPU.
+const char* far_field_instructions_name(FarFieldInstructions which = FarFieldInstructions::best);
+
+/// `factor` times the Taylor coefficients of kernel_taylor_coefficients for `count` pairs
+/// (P, *frames[w]), 1 <= count <= kFarFieldLanes, computed at once by the same recurrence run in
+/// SIMD lanes (the fast product's recomputed far field): pair w's num_taylor_terms(M) values at
+/// c[w * num_taylor_terms(M)]. Equal to kernel_taylor_coefficients up to rounding (the order and
+/// fusion of the operations differ). Throws std::invalid_argument for M outside [0, 12], count
+/// outside [1, kFarFieldLanes], or a P that coincides with some A(tau) or is not finite.
+void kernel_taylor_coefficients_lanes(const Vec3& P, const Vec3& nP, const PlaneFrame* const* frames, int count,
+                                      int M, double factor, double* c,
+                                      FarFieldInstructions which = FarFieldInstructions::best);
+
 /// Exact moments Int_Delta x^p y^q dS (graded order, p+q <= M) of the triangle (a,b,c) lying in
 /// the plane of `frame`, in the frame's local coordinates. `m` holds num_taylor_terms(M) values.
 void triangle_moments(const PlaneFrame& frame, const Vec3& a, const Vec3& b, const Vec3& c, int M,

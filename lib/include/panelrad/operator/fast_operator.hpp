@@ -25,6 +25,10 @@
 
 namespace panelrad {
 
+namespace far_field_batch {
+struct RowPoint;
+}
+
 /// Rows [begin, end) of K_n, the rows P_i whose coverings (42) an operator holds; end = -1 means
 /// n. The default is every row.
 struct RowRange {
@@ -241,6 +245,8 @@ class FastOperator final : public RadiosityOperator {
 
   void compute_moments(const Eigen::VectorXd& v, std::vector<double>& moments) const;
   void far_coefficients(geometry::Index i, geometry::Index cluster, double* c) const;
+  /// Row i's side of its far pairs (P_i in the far field's unit, n_P, rho_i/pi).
+  far_field_batch::RowPoint far_row_point(geometry::Index i) const;
   double apply_row(geometry::Index i, const Eigen::VectorXd& v, const std::vector<double>& moments,
                    double* scratch) const;
   /// Row i of the product for C vectors: out[c] = (K_n v_c)_i, each from its own moments, every

@@ -1,0 +1,170 @@
+// The choice of the far-field kernels (far_field_batch.hpp) for this CPU, and the loops over the
+// far pairs of a row that feed them kLanes pairs at a time.
+#include "far_field_batch.hpp"
+
+#include <panelrad/operator/far_field.hpp>
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace panelrad::far_field_batch {
+
+static_assert(kLanes == kFarFieldLanes && kMaxDegree == kMaxTaylorDegree &&
+              kMaxTerms == num_taylor_terms(kMaxTaylorDegree));
+
+#if PANELRAD_FAR_FIELD_AVX2
+const Kernels& avx2_fma_kernel_table();  // far_field_batch_avx2.cpp
+#endif
+
+alignas(32) const double kZeroMoments[kMaxTerms * 4] = {};
+
+const Kernels* avx2_fma_kernels() {
+#if PANELRAD_FAR_FIELD_AVX2
+  static const bool available = [] {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  }();
+  return available ? &avx2_fma_kernel_table() : nullptr;
+#else
+  return nullptr;
+#endif
+}
+
+const Kernels& kernels() {
+  static const Kernels* const chosen = avx2_fma_kernels() ? avx2_fma_kernels() : &baseline_kernels();
+  return *chosen;
+}
+
+double RowSums::total(int c) const {
+  double set[2];
+  for (int s = 0; s < 2; ++s) {
+    double partial[kPartialSums];
+    for (int r = 0; r < kPartialSums; ++r) {
+      const double* a = v[s] + (r * kSeries + c) * kLanes;
+      partial[r] = (a[0] + a[1]) + (a[2] + a[3]);
+    }
+    set[s] = (partial[0] + partial[1]) + (partial[2] + partial[3]);
+  }
+  return set[0] + set[1];
+}
+
+namespace {
+
+// Frame of lane w = frames[w] (w < count), the other lanes a copy of lane 0 (a valid frame).
+void gather_frames(const PlaneFrame* const* frames, int count, FrameLanes& lanes) {
+  for (int w = 0; w < kLanes; ++w) {
+    const PlaneFrame& f = *frames[w < count ? w : 0];
+    for (int k = 0; k < 3; ++k) {
+      lanes.v[k][w] = f.origin[k];
+      lanes.v[3 + k][w] = f.e1[k];
+      lanes.v[6 + k][w] = f.e2[k];
+      lanes.v[9 + k][w] = f.normal[k];
+    }
+  }
+}
+
+// The moments of the lanes of the batch starting at pair j0 (zeros beyond count).
+int batch_moments(const std::int32_t* clusters, std::int64_t j0, std::int64_t count, const double* moments,
+                  std::size_t stride, const double** m) {
+  const int in_batch = static_cast<int>(std::min<std::int64_t>(kLanes, count - j0));
+  for (int w = 0; w < kLanes; ++w)
+    m[w] = w < in_batch ? moments + static_cast<std::size_t>(clusters[j0 + w]) * stride : kZeroMoments;
+  return in_batch;
+}
+
+template <class Coef>
+void add_stored(const Kernels& kernels, const Coef* coef, int T, const std::int32_t* clusters, std::int64_t count,
+                const double* moments, int C, RowSums& sums) {
+  const std::size_t stride = static_cast<std::size_t>(T) * static_cast<std::size_t>(C);
+  const auto fn = [&] {
+    if constexpr (sizeof(Coef) == sizeof(float)) return kernels.stored_float;
+    else return kernels.stored_double;
+  }();
+  int set = 0;
+  for (std::int64_t j0 = 0; j0 < count; j0 += kLanes, set ^= 1) {
+    const double* m[kLanes];
+    const int in_batch = batch_moments(clusters, j0, count, moments, stride, m);
+    const Coef* c = coef + static_cast<std::size_t>(j0) * static_cast<std::size_t>(T);
+    if (in_batch < kLanes) {
+      // The row's tail: its pairs' coefficients, zeros for the lanes without a pair.
+      Coef tail[kLanes * kMaxTerms] = {};
+      std::copy(c, c + static_cast<std::size_t>(in_batch) * static_cast<std::size_t>(T), tail);
+      fn(tail, m, T, C, sums.v[set]);
+    } else {
+      fn(c, m, T, C, sums.v[set]);
+    }
+  }
+}
+
+}  // namespace
+
+bool pair_coefficients(const Kernels& kernels, int M, const RowPoint& row, const PlaneFrame& frame, double* c) {
+  const PlaneFrame* f = &frame;
+  FrameLanes lanes;
+  gather_frames(&f, 1, lanes);
+  alignas(32) double lane_c[kLanes * kMaxTerms];
+  if (!kernels.coefficients[M](row, lanes, lane_c)) return false;
+  for (int t = 0; t < num_taylor_terms(M); ++t) c[t] = lane_c[t * kLanes];
+  return true;
+}
+
+bool add_recomputed_row(const Kernels& kernels, int M, const RowPoint& row, const PlaneFrame* frames,
+                        const std::int32_t* clusters, std::int64_t count, const double* moments, int C, RowSums& sums) {
+  const std::size_t stride = static_cast<std::size_t>(num_taylor_terms(M)) * static_cast<std::size_t>(C);
+  const auto fn = kernels.recomputed[M];
+  int set = 0;
+  FrameLanes lanes;
+  for (std::int64_t j0 = 0; j0 < count; j0 += kLanes, set ^= 1) {
+    const double* m[kLanes];
+    const int in_batch = batch_moments(clusters, j0, count, moments, stride, m);
+    const PlaneFrame* f[kLanes];
+    for (int w = 0; w < in_batch; ++w) f[w] = frames + clusters[j0 + w];
+    gather_frames(f, in_batch, lanes);
+    if (!fn(row, lanes, m, C, sums.v[set])) return false;
+  }
+  return true;
+}
+
+void add_stored_row(const Kernels& kernels, const double* coef, int T, const std::int32_t* clusters,
+                    std::int64_t count, const double* moments, int C, RowSums& sums) {
+  add_stored(kernels, coef, T, clusters, count, moments, C, sums);
+}
+
+void add_stored_row(const Kernels& kernels, const float* coef, int T, const std::int32_t* clusters,
+                    std::int64_t count, const double* moments, int C, RowSums& sums) {
+  add_stored(kernels, coef, T, clusters, count, moments, C, sums);
+}
+
+}  // namespace panelrad::far_field_batch
+
+namespace panelrad {
+
+const char* far_field_instructions_name(FarFieldInstructions which) {
+  return which == FarFieldInstructions::baseline ? far_field_batch::baseline_kernels().name
+                                                 : far_field_batch::kernels().name;
+}
+
+void kernel_taylor_coefficients_lanes(const Vec3& P, const Vec3& nP, const PlaneFrame* const* frames, int count,
+                                      int M, double factor, double* c, FarFieldInstructions which) {
+  using namespace far_field_batch;
+  if (M < 0 || M > kMaxTaylorDegree)
+    throw std::invalid_argument("kernel_taylor_coefficients_lanes: Taylor degree M = " + std::to_string(M) +
+                                " outside [0, " + std::to_string(kMaxTaylorDegree) + "]");
+  if (count < 1 || count > kLanes)
+    throw std::invalid_argument("kernel_taylor_coefficients_lanes: " + std::to_string(count) +
+                                " pairs, outside [1, " + std::to_string(kLanes) + "]");
+  const Kernels& k = which == FarFieldInstructions::baseline ? baseline_kernels() : kernels();
+  const RowPoint row{{P[0], P[1], P[2]}, {nP[0], nP[1], nP[2]}, factor};
+  FrameLanes lanes;
+  gather_frames(frames, count, lanes);
+  const int T = num_taylor_terms(M);
+  alignas(32) double lane_c[kLanes * kMaxTerms];
+  if (!k.coefficients[M](row, lanes, lane_c))
+    throw std::invalid_argument("kernel_taylor_coefficients_lanes: P coincides with the expansion centre A(tau) of "
+                                "one of the pairs or is not finite");
+  for (int w = 0; w < count; ++w)
+    for (int t = 0; t < T; ++t) c[w * T + t] = lane_c[t * kLanes + w];
+}
+
+}  // namespace panelrad

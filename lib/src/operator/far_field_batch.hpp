@@ -1,0 +1,114 @@
+#pragma once
+// The far field (44)-(48) of the fast product for kFarFieldLanes (point, cluster) pairs of one
+// row at once, in SIMD lanes: lane w holds the pair (P_i, tau_w). P_i and n_P are common to the
+// row; the frames of the clusters are gathered into lanes, the Gegenbauer recurrence of
+// kernel_taylor_coefficients runs in the lanes, and each lane's Taylor terms are summed with the
+// moments m_t(tau_w) of (47).
+//
+// The sums of a row. Partial sum r of lane w of accumulator set s holds the running sum, over
+// the pairs of the row it is given, of the terms c_t m_t with t = r mod 4, in order of t, each
+// term one multiply-add acc = c_t m_t + acc (4 partial sums: independent chains). The caller
+// gives pair j of a row (in the row's far-field order) to lane j mod kFarFieldLanes of set
+// (j / kFarFieldLanes) mod 2, and adds the 2 x 4 x kFarFieldLanes sums in a fixed order at the
+// end (RowSums::total): every column of a block of C columns gets exactly the operations
+// of the one-column product, in the same order, on any thread, so a block product's column is
+// bit-identical to the product of that column alone, for any thread count.
+//
+// Instruction sets. The kernels are compiled twice: for baseline x86-64 (SSE2; the multiply-add
+// is a product rounded, then a sum rounded) and, on x86-64, for AVX2 + FMA (the multiply-add is
+// one fused, singly rounded operation), the latter chosen once at run time when the CPU has both.
+// The two differ from each other by rounding (the fused operations); each is deterministic
+// (floating-point contraction is off in both, every fusion is explicit). The kernels need only
+// vectors of 4 doubles, shuffles, sqrt and FMA, which the GCC/Clang vector extensions give in one
+// source for both builds; a build per translation unit and __builtin_cpu_supports do the
+// dispatch without a SIMD library among the dependencies.
+// This header is free of Eigen, of the standard library and of inline functions, so that the
+// kernels' translation units, compiled for other instruction sets, share no inline function with
+// the rest of the program (the linker keeps one copy of each, which must run on any x86-64).
+
+#include <cstdint>
+
+namespace panelrad {
+struct PlaneFrame;
+}
+
+namespace panelrad::far_field_batch {
+
+/// Pairs per batch (kFarFieldLanes of far_field.hpp), the largest Taylor degree
+/// (kMaxTaylorDegree) and its number of terms.
+inline constexpr int kLanes = 4;
+inline constexpr int kMaxDegree = 12;
+inline constexpr int kMaxTerms = (kMaxDegree + 1) * (kMaxDegree + 2) / 2;
+/// Partial sums per lane (term t into partial sum t mod kPartialSums: independent chains of
+/// multiply-adds), and columns (series) per partial sum.
+inline constexpr int kPartialSums = 4;
+inline constexpr int kSeries = 4;
+/// Doubles of one accumulator set: kPartialSums x kSeries columns x kLanes lanes.
+inline constexpr int kSetSize = kPartialSums * kSeries * kLanes;
+
+/// The row's side of the pairs: P_i in the far field's length unit, n_P, and the factor rho_i/pi
+/// that multiplies the Taylor coefficients of the product (the rho-scaled coefficients).
+struct RowPoint {
+  double P[3], nP[3], factor;
+};
+
+/// The frames of kLanes clusters, lane by lane: component k of lane w at v[k][w], k = 0..2 the
+/// origin A(tau), 3..5 e1, 6..8 e2, 9..11 the normal.
+struct FrameLanes {
+  alignas(32) double v[12][kLanes];
+};
+
+/// The kernels of one instruction set. acc holds an accumulator set (kSetSize running sums):
+/// partial sum r of column c of lane w at acc[(r kSeries + c) kLanes + w]; m[w] the moments of
+/// lane w's cluster, C columns interleaved (term t of column c at m[w][t * C + c]). Lanes without a pair get the moments of zero (and any valid
+/// frame or zero coefficients): they add +0 to their sums.
+struct Kernels {
+  const char* name;
+  /// The rho-scaled Taylor coefficients of the kLanes pairs, c[t * kLanes + w], degree M; false
+  /// (and c undefined) when some lane's P coincides with its A(tau) or is not finite.
+  bool (*coefficients[kMaxDegree + 1])(const RowPoint& row, const FrameLanes& frames, double* c);
+  /// The coefficients as above, summed with the moments into acc, C in 1..4.
+  bool (*recomputed[kMaxDegree + 1])(const RowPoint& row, const FrameLanes& frames, const double* const* m,
+                                           int C, double* acc);
+  /// Stored coefficients of kLanes consecutive pairs (pair w's T terms at coef[w * T]) summed
+  /// with the moments into acc, C in 1..4.
+  void (*stored_double)(const double* coef, const double* const* m, int T, int C, double* acc);
+  void (*stored_float)(const float* coef, const double* const* m, int T, int C, double* acc);
+};
+
+/// Baseline x86-64 (or whatever the build targets): always available.
+const Kernels& baseline_kernels();
+/// AVX2 + FMA: nullptr when not compiled in or when the CPU lacks either.
+const Kernels* avx2_fma_kernels();
+/// The kernels of this CPU, chosen once: AVX2 + FMA when available, else baseline.
+const Kernels& kernels();
+
+/// Zeros for kMaxTerms terms x 4 columns: the moments of a lane without a pair.
+extern const double kZeroMoments[kMaxTerms * 4];
+
+/// The far-field sums of one row for up to kSeries columns, in 2 accumulator sets.
+struct RowSums {
+  alignas(32) double v[2][kSetSize] = {};
+  /// Column c's far field (47): the 2 x kPartialSums x kLanes sums added in a fixed order
+  /// (out of line, like every function declared here: see the note at the top).
+  double total(int c) const;
+};
+
+/// The rho-scaled Taylor coefficients of the single pair (row, frame), T values in c: lane 0 of
+/// `kernels.coefficients`, so bit-identical to that pair's coefficients in any batch (the lanes
+/// are computed independently). False when P coincides with A(tau) or is not finite.
+bool pair_coefficients(const Kernels& kernels, int M, const RowPoint& row, const PlaneFrame& frame, double* c);
+
+/// Adds the far field of `count` pairs of a row, pair j with cluster clusters[j] (frame
+/// frames[clusters[j]], moments at moments + clusters[j] T C), coefficients recomputed at degree M
+/// (T = (M+1)(M+2)/2 terms), pair j into lane j mod kLanes of set (j / kLanes) mod 2. False when
+/// some pair's P coincides with its A(tau) or is not finite.
+bool add_recomputed_row(const Kernels& kernels, int M, const RowPoint& row, const PlaneFrame* frames,
+                        const std::int32_t* clusters, std::int64_t count, const double* moments, int C, RowSums& sums);
+/// The same with the stored coefficients of the pairs (pair j's T terms at coef + j T).
+void add_stored_row(const Kernels& kernels, const double* coef, int T, const std::int32_t* clusters,
+                    std::int64_t count, const double* moments, int C, RowSums& sums);
+void add_stored_row(const Kernels& kernels, const float* coef, int T, const std::int32_t* clusters,
+                    std::int64_t count, const double* moments, int C, RowSums& sums);
+
+}  // namespace panelrad::far_field_batch
