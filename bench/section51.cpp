@@ -1,6 +1,7 @@
 // Section 5.1 of the paper, measured in one run: on the cube example at n = 3072 and 12288,
 //   (a) dense setup + LU, (b) dense setup + Neumann iteration, (c) fast method + Neumann with the
 //   paper's (eta, M) = (0.2, 2) and with the automatic setting,
+//   (d) the library's defaults: automatic parameters and solver (GMRES where it needs fewer products),
 // all to the same accuracy. Prints times, errors, speed-ups and peak memory; optional CSV.
 //   usage: section51 [--levels L0 L1] [--threads T] [--csv PATH] [--skip-lu]
 #include <panelrad/operator/auto_parameters.hpp>
@@ -26,6 +27,7 @@ struct Timing {
   Index n = 0;
   double setup_s = 0, solve_s = 0, error = 0;
   int iterations = 0;
+  std::string solver;  // what ran, with the automatic choice's reason
   double total() const { return setup_s + solve_s; }
 };
 
@@ -33,21 +35,22 @@ struct Timing {
 // Neumann iteration (34) to the tolerance tied to the discretization error (as the paper stopped
 // at the best possible accuracy). Setup: the cluster tree and the operator (E manufacturing is
 // test data, not counted).
-RadiositySolverOptions cube_options(int level, OperatorMethod method, const OperatorOptions& manual = {}) {
+RadiositySolverOptions cube_options(int level, OperatorMethod method, const OperatorOptions& manual = {},
+                                    SolverKind solver = SolverKind::neumann) {
   RadiositySolverOptions o;
   o.level = level;
   o.method = method;
   o.manual = manual;
   o.fold_reflectivity = true;
-  o.solver.kind = SolverKind::neumann;
+  o.solver.kind = solver;
   return o;
 }
 
-Timing neumann_row(const std::string& what, const RadiositySolver& solver) {
+Timing solve_row(const std::string& what, const RadiositySolver& solver) {
   const ChannelSolve r = solver.solve(0);
   if (!r.converged()) throw SolverError(r.message);
   return {what, solver.n(), solver.collocation().tree_seconds() + solver.info().operator_s, r.seconds,
-          solver.collocation().max_error(r.u), r.iterations};
+          solver.collocation().max_error(r.u), r.iterations, r.solver};
 }
 }  // namespace
 
@@ -73,17 +76,17 @@ int main(int argc, char** argv) {
   const Scene scene = make_paper_cube_scene();
   std::vector<Timing> all;
   std::printf("Section 5.1 comparison on the cube, threads %d\n", max_threads());
-  std::printf("%-38s %7s %10s %10s %10s %6s %11s %9s\n", "method", "n", "setup s", "solve s", "total s", "iters",
+  std::printf("%-40s %7s %10s %10s %10s %6s %11s %9s\n", "method", "n", "setup s", "solve s", "total s", "iters",
               "max error", "peak MB");
   for (int level = l0; level <= l1; ++level) {
     std::vector<Timing> rows;
     {
       const RadiositySolver dense(scene, cube_options(level, OperatorMethod::dense));
-      rows.push_back(neumann_row("dense setup + Neumann", dense));
+      rows.push_back(solve_row("dense setup + Neumann", dense));
       if (!skip_lu) {  // the direct baseline on the same matrix
         const Collocation& col = dense.collocation();
         const auto lu = solve_lu(dynamic_cast<const DenseOperator&>(dense.op()), col.emissivity());
-        rows.push_back({"dense setup + LU", col.size(), rows.back().setup_s, lu.seconds, col.max_error(lu.u), 0});
+        rows.push_back({"dense setup + LU", col.size(), rows.back().setup_s, lu.seconds, col.max_error(lu.u), 0, "lu"});
       }
     }
     // The fast method with the paper's (eta, M) = (0.2, 2), and with the setting --accuracy auto
@@ -92,16 +95,24 @@ int main(int argc, char** argv) {
     const std::size_t dense_rows = rows.size();
     OperatorOptions paper;
     paper.method = OperatorMethod::fast;  // eta 0.2, M 2, exact near field
-    rows.push_back(neumann_row("fast (0.2, exact, M=2) + Neumann", RadiositySolver(scene, cube_options(level, OperatorMethod::fast, paper))));
+    rows.push_back(solve_row("fast (0.2, exact, M=2) + Neumann", RadiositySolver(scene, cube_options(level, OperatorMethod::fast, paper))));
     if (choose_parameters(problem_size(scene.mesh(), level)).method == OperatorMethod::fast) {  // dense for n <= 768
       const RadiositySolver automatic(scene, cube_options(level, OperatorMethod::automatic));
       char auto_name[64];
       std::snprintf(auto_name, sizeof auto_name, "fast auto (%g, exact, M=%d) + Neumann", automatic.parameters().eta,
                     automatic.parameters().degree);
-      rows.push_back(neumann_row(auto_name, automatic));
+      rows.push_back(solve_row(auto_name, automatic));
+      // The library's defaults: automatic parameters and the automatic solver (the iteration of
+      // fewer expected products, solvers.hpp), the same tolerance.
+      const RadiositySolver defaults(scene, cube_options(level, OperatorMethod::automatic, {}, SolverKind::automatic));
+      Timing t = solve_row("", defaults);
+      std::snprintf(auto_name, sizeof auto_name, "fast auto (%g, exact, M=%d) + %s", defaults.parameters().eta,
+                    defaults.parameters().degree, t.solver.find("GMRES") != std::string::npos ? "auto GMRES" : "auto Neumann");
+      t.what = auto_name;
+      rows.push_back(t);
     }
     for (const auto& r : rows) {
-      std::printf("%-38s %7d %10.3f %10.3f %10.3f %6d %11.4e %9.0f\n", r.what.c_str(), static_cast<int>(r.n), r.setup_s,
+      std::printf("%-40s %7d %10.3f %10.3f %10.3f %6d %11.4e %9.0f\n", r.what.c_str(), static_cast<int>(r.n), r.setup_s,
                   r.solve_s, r.total(), r.iterations, r.error, peak_rss_mb());
       all.push_back(r);
     }
