@@ -106,7 +106,8 @@ int main(int argc, char** argv) {
                   median(single), median(block), static_cast<double>(op.bytes()) / 1e6,
                   static_cast<double>(op.bytes()) / static_cast<double>(col.size()));
       for (const SelfCheckVector& c : check.vectors) std::printf(" %.2e", c.relative_error);
-      std::printf("  (%.2e)\n", check.relative_error);
+      std::printf("  (%.2e)  setup: geometry %.3f, coverings %.3f, far %.3f s\n", check.relative_error, s.geometry_s,
+                  s.covering_s, s.far_s);
       std::fflush(stdout);
     }
     std::printf("self-check vectors:");

@@ -58,7 +58,13 @@ void at_points(const RadiositySolver& solver, const FacetData& d, Eigen::VectorX
 
 // One solver object, two data sets solved in turn, against a separate one-shot solve_scene per
 // data set: bit-for-bit the same (the same H, the same iteration, the same tolerance).
-void expect_reuse_matches_one_shot(const RadiositySolverOptions& options) {
+// bit_identical: the same operator both ways (dense). The fast operator stores its far
+// coefficients in single precision, or recomputes them in double, by the products its solver
+// expects (far_field_costs), which depend on rho (0 for the geometry-only solver): the two
+// operators may then differ by the float rounding, 2^-24 ~ 6e-8 relative per coefficient, so the
+// solutions by at most about 6e-8 rho/(1 - rho) ||u|| (1e-7 ||u|| here, rho <= 0.5) beside their
+// iteration errors.
+void expect_reuse_matches_one_shot(const RadiositySolverOptions& options, bool bit_identical) {
   const Scene geometry_only(valid_cube());  // rho 0, E 1: only its surface is used
   const RadiositySolver solver(geometry_only, options);
   for (const FacetData& d : kData) {
@@ -68,8 +74,14 @@ void expect_reuse_matches_one_shot(const RadiositySolverOptions& options) {
     const SceneSolution one_shot = solve_scene(scalar_scene(d), options);
     ASSERT_TRUE(reused.converged()) << reused.message;
     EXPECT_EQ(one_shot.parameters, solver.parameters());
-    EXPECT_EQ(reused.iterations, one_shot.channels[0].iterations);
-    EXPECT_TRUE((reused.u.array() == one_shot.channels[0].radiosity.array()).all());
+    const Eigen::VectorXd& u = one_shot.channels[0].radiosity;
+    if (bit_identical) {
+      EXPECT_EQ(reused.iterations, one_shot.channels[0].iterations);
+      EXPECT_TRUE((reused.u.array() == u.array()).all());
+    } else {
+      const double bound = 1e-7 * u.lpNorm<Eigen::Infinity>() + reused.error_estimate + one_shot.channels[0].error_estimate;
+      EXPECT_LE((reused.u - u).lpNorm<Eigen::Infinity>(), bound);
+    }
   }
 }
 
@@ -79,7 +91,7 @@ TEST(RadiositySolver, SeveralRightHandSidesEqualOneShotSolvesDense) {
   RadiositySolverOptions o;
   o.level = 2;  // n = 192: dense
   o.method = OperatorMethod::dense;
-  expect_reuse_matches_one_shot(o);
+  expect_reuse_matches_one_shot(o, true);
 }
 
 TEST(RadiositySolver, SeveralRightHandSidesEqualOneShotSolvesFast) {
@@ -88,7 +100,7 @@ TEST(RadiositySolver, SeveralRightHandSidesEqualOneShotSolvesFast) {
   o.method = OperatorMethod::fast;
   o.manual.eta = 0.5;
   o.manual.degree = 4;
-  expect_reuse_matches_one_shot(o);
+  expect_reuse_matches_one_shot(o, false);
 }
 
 TEST(RadiositySolver, ChannelSolveIsTheSceneChannel) {

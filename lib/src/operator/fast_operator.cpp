@@ -70,19 +70,29 @@ std::pair<Index, Index> resolve_rows(const RowRange& rows, Index n) {
 
 }  // namespace
 
-// Per pair and core, this machine (AMD EPYC, 2 GHz, AVX2; 2 threads), from bench/product at
-// n = 49,152: recomputing T coefficients costs about c T ns, and writing them into new memory
-// costs the page's first touch, about w ns a byte; reading them back in a product about r ns a
-// byte. The model is deterministic (no timing at run time), so the choice, and with it the
-// product's rounding, does not vary between runs.
+// Per (point, cluster) pair and core, measured on this machine (AMD EPYC at 2 GHz, AVX2 + FMA
+// kernels of far_field_batch.hpp, 2 threads) with bench/product on the cube at n = 49,152, eta 0.5
+// and 0.4, M = 6 and 7 (T = 28 and 36 terms; B = T x 8 or 4 bytes):
+//   - recomputing in a product: 0.130 s and 0.242 s a product for 4.50 and 7.28 million pairs,
+//     58 and 66 ns a pair: about 1.9 ns a term;
+//   - reading stored coefficients: the product's multiply-adds, 1.3 ns a term (40 ns a pair at
+//     T = 28, float or double), or the memory's bandwidth, 0.22 ns a byte over both cores
+//     (double at T = 36: 2.17 GB in 0.229 s), whichever is slower;
+//   - filling them at setup: 3.5 ns a term for the coefficients (one pair at a time) and the first
+//     touch of new memory, 2.2 ns a byte (setup 1.46 s double and 0.64 s float against 0.095 s
+//     recomputing, at T = 28).
+// So storing pays after about 17 products in single precision and almost never in double. The
+// model is fixed (no timing at run time), so the choice, and with it the product's rounding,
+// never varies between runs.
 FarFieldCosts far_field_costs(int degree, std::size_t bytes_per_term) {
-  constexpr double kRecomputeNsPerTerm = 3.5, kFirstTouchNsPerByte = 1.0, kReadNsPerByte = 0.1;
+  constexpr double kRecomputeNsPerTerm = 1.9, kReadNsPerTerm = 1.3, kReadNsPerByte = 0.22;
+  constexpr double kFillNsPerTerm = 3.5, kFirstTouchNsPerByte = 2.2;
   const double T = num_taylor_terms(degree);
   const double bytes = T * static_cast<double>(bytes_per_term);
   FarFieldCosts c;
   c.recompute_ns = kRecomputeNsPerTerm * T;
-  c.fill_ns = c.recompute_ns + kFirstTouchNsPerByte * bytes;
-  c.read_ns = kReadNsPerByte * bytes;
+  c.read_ns = std::max(kReadNsPerTerm * T, kReadNsPerByte * bytes);
+  c.fill_ns = kFillNsPerTerm * T + kFirstTouchNsPerByte * bytes;
   return c;
 }
 
@@ -195,7 +205,7 @@ void FastOperator::setup_element_data(const Collocation& collocation) {
   const geometry::ClusterTree& tree = *tree_;
   const int L = tree.finest_level();
   const std::size_t T = static_cast<std::size_t>(terms_);
-  element_moments_.resize(static_cast<std::size_t>(n_) * T);
+  element_moments_ = LargeBuffer(static_cast<std::size_t>(n_) * T);  // first touched in parallel below
 #pragma omp parallel for schedule(static)
   for (Index e = 0; e < n_; ++e) {
     const Cluster& c = tree.cluster(L, e);
@@ -206,6 +216,7 @@ void FastOperator::setup_element_data(const Collocation& collocation) {
   rho_.resize(static_cast<std::size_t>(n_));
   point_.resize(static_cast<std::size_t>(n_));
   normal_.resize(static_cast<std::size_t>(n_));
+#pragma omp parallel for schedule(static)
   for (Index i = 0; i < n_; ++i) {
     rho_[static_cast<std::size_t>(i)] = collocation.reflectivity()[i];
     point_[static_cast<std::size_t>(i)] = collocation.collocation_point(i);
@@ -371,7 +382,7 @@ std::size_t FastOperator::held_bytes() const {
   return near_col_.size() * sizeof(Index) + near_val_.size() * sizeof(double) + far_cluster_.size() * sizeof(Index) +
          far_coef_.bytes() + far_coef_single_.bytes() + (near_start_.size() + far_start_.size()) * sizeof(std::int64_t) +
          frame_.size() * sizeof(PlaneFrame) + to_parent_.size() * sizeof(to_parent_[0]) +
-         element_moments_.size() * sizeof(double) +
+         element_moments_.bytes() +
          num_clusters * static_cast<std::size_t>(terms_) * sizeof(double) /* moments per product */;
 }
 

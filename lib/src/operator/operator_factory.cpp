@@ -73,7 +73,7 @@ std::shared_ptr<const geometry::Occluders> scene_occluders(const geometry::Clust
   return std::make_shared<const geometry::Occluders>(faces);
 }
 
-bool single_precision_far_field(Visibility visibility) { return visibility == Visibility::occluded; }
+bool single_precision_far_field(Visibility) { return true; }
 
 std::unique_ptr<RadiosityOperator> make_operator(const Collocation& collocation, const OperatorOptions& options,
                                                  Visibility visibility, const SetupProgress& progress) {

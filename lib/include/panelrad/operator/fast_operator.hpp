@@ -266,7 +266,7 @@ class FastOperator final : public RadiosityOperator {
   double unit_scale_ = 1;                         // far field in units of 2^k ~ diameter (exact scaling)
   std::vector<PlaneFrame> frame_;                 // per cluster: origin A(tau) (scaled), axes of its plane
   std::vector<std::array<double, 2>> to_parent_;  // per non-root cluster: its A in parent's frame
-  std::vector<double> element_moments_;           // per element: Int_Delta x^p y^q dS about A(Delta)
+  LargeBuffer element_moments_;                  // per element: Int_Delta x^p y^q dS about A(Delta)
   // Near field (CSR over the rows held, row i at i - begin): element index and rho_i/pi Int G.
   // CSR rather than Eigen::SparseMatrix<double, RowMajor, StorageIndex>, measured on the cube,
   // eta 0.2 (near pairs 5.6 a row at n = 49152, 2.8 at 196608, 1.4 at 786432): a 64-bit
