@@ -194,7 +194,7 @@ Eigen::VectorXd random_signs(Index n, unsigned seed) {
 }
 
 // Recomputed in the lanes, stored in double (computed by the same lanes, one pair at a time) and
-// stored in float: the first two bit-identical, the float one within its rounding, and all
+// stored in float: the first two equal up to the order of the sums, the float one within its rounding, and all
 // three within the truncation error (44) of the dense product, for M = 0..12 (every kernel).
 TEST_F(CubeLevel3Lanes, RecomputedEqualsStoredForEveryDegree) {
   const Index n = collocation->size();
@@ -217,7 +217,10 @@ TEST_F(CubeLevel3Lanes, RecomputedEqualsStoredForEveryDegree) {
     fs.apply(v, ys);
     ff.apply(v, yf);
     fr.apply(v, yr);
-    EXPECT_EQ(0, std::memcmp(ys.data(), yr.data(), sizeof(double) * static_cast<std::size_t>(n))) << "M " << M;
+    // The same coefficients, summed pair by pair when stored and in the lanes' fixed tree when
+    // recomputed: equal up to the sums' order, a few ulps of (K|v|)_i (1e-14 of the scale, with
+    // the row's few hundred terms' rounding ~ 100 u).
+    EXPECT_LE((ys - yr).lpNorm<Eigen::Infinity>(), 1e-14 * s) << "M " << M;
     // float coefficients: each rounded by 2^-24 relative, so a row by 2^-24 sum_t |c_t m_t(|v|)|;
     // the Taylor terms of degree n are at most C(n+3,3) eta^n times the degree-0 term (the bound
     // of far_field.hpp), summing to at most (1 - eta)^-4 = 16 times (K|v|)_i at eta = 0.5.

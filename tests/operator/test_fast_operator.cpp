@@ -159,7 +159,10 @@ TEST_F(CubeLevel3, StoredAndRecomputedFarFieldAgree) {
   Eigen::VectorXd ya, yb;
   a.apply(v, ya);
   b.apply(v, yb);
-  EXPECT_EQ(0, std::memcmp(ya.data(), yb.data(), sizeof(double) * 768));
+  // The same coefficients (the stored ones come from the recomputing kernels, one pair at a time),
+  // summed pair by pair when stored and in SIMD lanes when recomputed: the same value up to the
+  // rounding of the sums' order, a few ulps of (K|v|)_i (v >= 0 here, so of y itself); 1e-14.
+  EXPECT_LE((ya - yb).lpNorm<Eigen::Infinity>(), 1e-14 * ya.lpNorm<Eigen::Infinity>());
   EXPECT_LT(b.bytes(), a.bytes());
 }
 

@@ -480,6 +480,28 @@ void FastOperator::compute_moments(const Eigen::VectorXd& v, std::vector<double>
   }
 }
 
+namespace {
+
+// sum[c] += sum_t coef[t] m[t C + c], (47), t in order for every column c; the stored coefficients
+// in double or single precision (widened exactly to double before the product). Reading them is
+// what a stored product costs; packets of columns keep the C sums in SIMD registers (Eigen's SIMD
+// arithmetic is the scalar IEEE arithmetic, lane by lane, so each column's sum is the C = 1 sum).
+template <int C, class Coef>
+inline void add_far_terms(const Coef* coef, const double* m, std::size_t T, double* sum) {
+  if constexpr (C % 2 == 0) {
+    using Packet = Eigen::Array<double, C, 1>;
+    Packet acc = Eigen::Map<const Packet>(sum);
+    for (std::size_t t = 0; t < T; ++t) acc += static_cast<double>(coef[t]) * Eigen::Map<const Packet>(m + t * C);
+    Eigen::Map<Packet> sums(sum);
+    sums = acc;
+  } else {
+    for (std::size_t t = 0; t < T; ++t)
+      for (int c = 0; c < C; ++c) sum[c] += static_cast<double>(coef[t]) * m[t * C + c];
+  }
+}
+
+}  // namespace
+
 // Row i (held) of the fast product (43) for C vectors, from their cluster moments: near field plus
 // far field (47). v and moments hold the C columns interleaved (entry j of column c at j C + c), so
 // that the C sums advance together; the lists and far coefficients are read once for all C. The
@@ -508,10 +530,19 @@ void FastOperator::apply_row_columns(Index i, const double* v, const double* mom
                                              count, moments, C, sums))
       throw std::invalid_argument("FastOperator: collocation point " + std::to_string(i) +
                                   " coincides with the centre A(tau) of a far cluster or is not finite");
-  } else if (options_.single_precision_coefficients) {
-    far_field_batch::add_stored_row(kernels, far_coef_single_.data() + at, terms_, clusters, count, moments, C, sums);
   } else {
-    far_field_batch::add_stored_row(kernels, far_coef_.data() + at, terms_, clusters, count, moments, C, sums);
+    // Stored: pair by pair, each column's sum in the same order for every C (the block products of
+    // several channels read the coefficients once: measured faster than the lanes here).
+    const std::size_t T = static_cast<std::size_t>(terms_);
+    double far[C];
+    for (int c = 0; c < C; ++c) far[c] = 0;
+    for (std::int64_t j = 0; j < count; ++j) {
+      const double* m = moments + static_cast<std::size_t>(clusters[j]) * T * C;
+      if (options_.single_precision_coefficients) add_far_terms<C>(far_coef_single_.data() + at + static_cast<std::size_t>(j) * T, m, T, far);
+      else add_far_terms<C>(far_coef_.data() + at + static_cast<std::size_t>(j) * T, m, T, far);
+    }
+    for (int c = 0; c < C; ++c) out[c] = near[c] + far[c];
+    return;
   }
   for (int c = 0; c < C; ++c) out[c] = near[c] + sums.total(c);
 }
