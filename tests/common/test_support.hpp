@@ -4,7 +4,10 @@
 // RLIMIT_AS cannot run there), and the message of a refused argument.
 #include <gtest/gtest.h>
 
+#include <Eigen/Core>
+
 #include <filesystem>
+#include <random>
 #include <stdexcept>
 #include <fstream>
 #include <string>
@@ -21,6 +24,15 @@
 #endif
 
 namespace panelrad::testing {
+
+/// n values uniform in [0, 1) from a fixed seed (std::mt19937): a reproducible test vector v >= 0.
+inline Eigen::VectorXd random_vector(Eigen::Index n, unsigned seed) {
+  std::mt19937 gen(seed);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  Eigen::VectorXd v(n);
+  for (Eigen::Index i = 0; i < n; ++i) v[i] = U(gen);
+  return v;
+}
 
 /// The message of the std::invalid_argument `f` throws ("" when it does not throw).
 template <class F>

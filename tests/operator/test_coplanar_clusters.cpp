@@ -9,6 +9,8 @@
 
 #include "test_scenes.hpp"
 
+#include "test_support.hpp"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -22,13 +24,7 @@ using namespace panelrad;
 
 const std::string kScenes = std::string(PANELRAD_SOURCE_DIR) + "/examples/scenes/";
 
-Eigen::VectorXd random_vector(Index n, unsigned seed) {
-  std::mt19937 gen(seed);
-  std::uniform_real_distribution<double> U(0.0, 1.0);
-  Eigen::VectorXd v(n);
-  for (Index i = 0; i < n; ++i) v[i] = U(gen);
-  return v;
-}
+using panelrad::testing::random_vector;
 
 // Whether element e lies in the plane of row i's element, in double precision, independently of
 // the tree's plane ids: its corners within 1e-12 of the diameter of P's plane.

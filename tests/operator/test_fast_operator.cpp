@@ -7,6 +7,8 @@
 #include <panelrad/scene/scene.hpp>
 #include <panelrad/solve/solvers.hpp>
 
+#include "test_support.hpp"
+
 #include <gtest/gtest.h>
 
 #include <omp.h>
@@ -18,13 +20,7 @@ namespace {
 
 using namespace panelrad;
 
-Eigen::VectorXd random_vector(Index n, unsigned seed) {
-  std::mt19937 gen(seed);
-  std::uniform_real_distribution<double> U(0.0, 1.0);
-  Eigen::VectorXd v(n);
-  for (Index i = 0; i < n; ++i) v[i] = U(gen);
-  return v;
-}
+using panelrad::testing::random_vector;
 
 double relative_product_error(const RadiosityOperator& fast, const DenseOperator& dense, const Eigen::VectorXd& v) {
   Eigen::VectorXd yf, yd;

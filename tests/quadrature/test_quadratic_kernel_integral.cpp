@@ -6,6 +6,8 @@
 #include <panelrad/quadrature/exact_integrals.hpp>
 #include <panelrad/quadrature/singular_integration.hpp>
 
+#include "edge_configurations.hpp"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -23,19 +25,12 @@ using panelrad::geometry::Index;
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0), nQ(0, 0, 1);  // inner normal +z
-
-// P on a neighbouring facet through the edge a-b (the x axis) at dihedral angle alpha (the
-// facet spans (0, cos alpha, sin alpha) from the edge; its inner normal points into the wedge),
-// at distance dist from the edge's line.
-struct Neighbour {
-  Vec3 P, nP;
-};
-Neighbour neighbour_point(double alpha_deg, double x, double dist) {
-  const double al = alpha_deg * kPi / 180;
-  const Vec3 d(0, std::cos(al), std::sin(al));
-  return {Vec3(x, 0, 0) + dist * d, Vec3(0, std::sin(al), -std::cos(al))};
-}
+const Vec3& a = panelrad::testing::kEdgeA;  // the triangle (a, b, c), inner normal nQ = +z
+const Vec3& b = panelrad::testing::kEdgeB;
+const Vec3& c = panelrad::testing::kApexC;
+const Vec3& nQ = panelrad::testing::kTriangleNormal;
+using panelrad::testing::Neighbour;
+using panelrad::testing::neighbour_point;
 
 std::array<double, 6> nodal_values(const std::function<double(const Vec3&)>& f, const Vec3& A,
                                    const Vec3& B, const Vec3& C) {
