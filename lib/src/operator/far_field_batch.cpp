@@ -73,30 +73,6 @@ int batch_moments(const std::int32_t* clusters, std::int64_t j0, std::int64_t co
   return in_batch;
 }
 
-template <class Coef>
-void add_stored(const Kernels& kernels, const Coef* coef, int T, const std::int32_t* clusters, std::int64_t count,
-                const double* moments, int C, RowSums& sums) {
-  const std::size_t stride = static_cast<std::size_t>(T) * static_cast<std::size_t>(C);
-  const auto fn = [&] {
-    if constexpr (sizeof(Coef) == sizeof(float)) return kernels.stored_float;
-    else return kernels.stored_double;
-  }();
-  int set = 0;
-  for (std::int64_t j0 = 0; j0 < count; j0 += kLanes, set ^= 1) {
-    const double* m[kLanes];
-    const int in_batch = batch_moments(clusters, j0, count, moments, stride, m);
-    const Coef* c = coef + static_cast<std::size_t>(j0) * static_cast<std::size_t>(T);
-    if (in_batch < kLanes) {
-      // The row's tail: its pairs' coefficients, zeros for the lanes without a pair.
-      Coef tail[kLanes * kMaxTerms] = {};
-      std::copy(c, c + static_cast<std::size_t>(in_batch) * static_cast<std::size_t>(T), tail);
-      fn(tail, m, T, C, sums.v[set]);
-    } else {
-      fn(c, m, T, C, sums.v[set]);
-    }
-  }
-}
-
 }  // namespace
 
 bool pair_coefficients(const Kernels& kernels, int M, const RowPoint& row, const PlaneFrame& frame, double* c) {
@@ -124,16 +100,6 @@ bool add_recomputed_row(const Kernels& kernels, int M, const RowPoint& row, cons
     if (!fn(row, lanes, m, C, sums.v[set])) return false;
   }
   return true;
-}
-
-void add_stored_row(const Kernels& kernels, const double* coef, int T, const std::int32_t* clusters,
-                    std::int64_t count, const double* moments, int C, RowSums& sums) {
-  add_stored(kernels, coef, T, clusters, count, moments, C, sums);
-}
-
-void add_stored_row(const Kernels& kernels, const float* coef, int T, const std::int32_t* clusters,
-                    std::int64_t count, const double* moments, int C, RowSums& sums) {
-  add_stored(kernels, coef, T, clusters, count, moments, C, sums);
 }
 
 }  // namespace panelrad::far_field_batch

@@ -72,8 +72,6 @@ struct Kernels {
                                            int C, double* acc);
   /// Stored coefficients of kLanes consecutive pairs (pair w's T terms at coef[w * T]) summed
   /// with the moments into acc, C in 1..4.
-  void (*stored_double)(const double* coef, const double* const* m, int T, int C, double* acc);
-  void (*stored_float)(const float* coef, const double* const* m, int T, int C, double* acc);
 };
 
 /// Baseline x86-64 (or whatever the build targets): always available.
@@ -105,10 +103,5 @@ bool pair_coefficients(const Kernels& kernels, int M, const RowPoint& row, const
 /// some pair's P coincides with its A(tau) or is not finite.
 bool add_recomputed_row(const Kernels& kernels, int M, const RowPoint& row, const PlaneFrame* frames,
                         const std::int32_t* clusters, std::int64_t count, const double* moments, int C, RowSums& sums);
-/// The same with the stored coefficients of the pairs (pair j's T terms at coef + j T).
-void add_stored_row(const Kernels& kernels, const double* coef, int T, const std::int32_t* clusters,
-                    std::int64_t count, const double* moments, int C, RowSums& sums);
-void add_stored_row(const Kernels& kernels, const float* coef, int T, const std::int32_t* clusters,
-                    std::int64_t count, const double* moments, int C, RowSums& sums);
 
 }  // namespace panelrad::far_field_batch

@@ -14,7 +14,6 @@ namespace panelrad::far_field_batch {
 namespace {
 
 using V = double __attribute__((vector_size(8 * kLanes)));
-using VF = float __attribute__((vector_size(4 * kLanes)));
 using VI = long long __attribute__((vector_size(8 * kLanes)));
 static_assert(kLanes == 4, "the 4 x 4 transposes below assume 4 lanes");
 
@@ -28,11 +27,6 @@ constexpr int index_of(int p, int q) { return (p + q) * (p + q + 1) / 2 + q; }
   return v;
 }
 [[gnu::always_inline]] inline void store(double* p, V v) { __builtin_memcpy(p, &v, sizeof v); }
-[[gnu::always_inline]] inline V load_float(const float* p) {
-  VF f;
-  __builtin_memcpy(&f, p, sizeof f);
-  return __builtin_convertvector(f, V);  // exact: every float is a double
-}
 
 // a b + c: fused (one rounding) or product then sum (two roundings), see the file comment.
 [[gnu::always_inline]] inline V madd(V a, V b, V c) {
@@ -198,38 +192,9 @@ bool recomputed_of_degree(const RowPoint& row, const FrameLanes& frames, const d
   }
 }
 
-// The stored coefficients of the 4 pairs (pair w's T terms at coef + w T) in vectors over the
-// lanes, c[t][w], 4 terms at a time transposed (widened exactly from float).
-template <class Coef>
-[[gnu::always_inline]] inline void coefficient_lanes(const Coef* coef, int T, V* c) {
-  const auto row_load = [&](const Coef* p) {
-    if constexpr (sizeof(Coef) == sizeof(float)) return load_float(p);
-    else return load(p);
-  };
-  int t = 0;
-  for (; t + 4 <= T; t += 4)
-    transpose(row_load(coef + t), row_load(coef + T + t), row_load(coef + 2 * T + t), row_load(coef + 3 * T + t), c + t);
-  for (; t < T; ++t)
-    c[t] = V{static_cast<double>(coef[t]), static_cast<double>(coef[T + t]), static_cast<double>(coef[2 * T + t]),
-             static_cast<double>(coef[3 * T + t])};
-}
-
-template <class Coef>
-void stored(const Coef* coef, const double* const* m, int T, int C, double* acc) {
-  V c[kMaxTerms];
-  coefficient_lanes(coef, T, c);
-  switch (C) {
-    case 1: add_terms<1>(T, m, acc, c); break;
-    case 2: add_terms<2>(T, m, acc, c); break;
-    case 3: add_terms<3>(T, m, acc, c); break;
-    default: add_terms<4>(T, m, acc, c); break;
-  }
-}
-
 template <int... Ms>
 constexpr Kernels make_kernels(const char* name) {
-  return Kernels{name, {&coefficients_of_degree<Ms>...}, {&recomputed_of_degree<Ms>...}, &stored<double>,
-                 &stored<float>};
+  return Kernels{name, {&coefficients_of_degree<Ms>...}, {&recomputed_of_degree<Ms>...}};
 }
 
 constexpr Kernels kLaneKernels = make_kernels<0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12>(PANELRAD_LANES_NAME);

@@ -435,8 +435,8 @@ std::pair<int, Index> FastOperator::cluster_of_id(Index id) const {
 }
 
 // rho(P_i)/pi times the Taylor coefficients of G(P_i, .) about A(tau), (44)-(45): the stored
-// coefficients, computed by the kernels of the recomputing product (far_field_batch.hpp), so
-// that a product with stored double coefficients is bit-identical to one that recomputes them.
+// coefficients, computed by the kernels of the recomputing product (far_field_batch.hpp), so that
+// stored double and recomputed coefficients are the same numbers (their sums' order differs).
 far_field_batch::RowPoint FastOperator::far_row_point(Index i) const {
   const Vec3 P = unit_scale_ * point_[static_cast<std::size_t>(i)];
   const Vec3& nP = normal_[static_cast<std::size_t>(i)];
@@ -504,11 +504,11 @@ inline void add_far_terms(const Coef* coef, const double* m, std::size_t T, doub
 
 // Row i (held) of the fast product (43) for C vectors, from their cluster moments: near field plus
 // far field (47). v and moments hold the C columns interleaved (entry j of column c at j C + c), so
-// that the C sums advance together; the lists and far coefficients are read once for all C. The
-// far pairs go kFarFieldLanes at a time through the SIMD kernels of far_field_batch.hpp, which
-// fix the order of every column's sums independently of C: a column of a block product is
-// bit-identical to the product of that column alone, for any thread count. The coefficients are
-// the stored ones (double or float, widened exactly) or recomputed in the lanes.
+// that the C sums advance together; the lists and far coefficients are read once for all C.
+// Recomputed coefficients: the far pairs go kFarFieldLanes at a time through the SIMD kernels of
+// far_field_batch.hpp. Stored ones (double or float, widened exactly): pair by pair with
+// add_far_terms. Both fix the order of every column's sums independently of C, so a column of a
+// block product is bit-identical to the product of that column alone, for any thread count.
 template <int C>
 void FastOperator::apply_row_columns(Index i, const double* v, const double* moments, double* /*scratch*/,
                                      double* out) const {
