@@ -9,8 +9,12 @@
 //     smooth, oscillating "cos 7x + sin(5y) z", piecewise constant by facet, random +-1), on
 //     --rows S sampled exact rows (default 256), relative to max_k (K|v|)_k.
 // Rows are weighted by rho of (31), as in the solver.
+// and the local expansions of target clusters (LocalExpansionOptions): their finest level, the
+// (target, source) pairs and the (point, cluster) pairs they stand for; --local D ETA_T MIN sets
+// their degree, target admissibility and fewest points (-1 0 0: the defaults), --no-local turns
+// them off.
 //   usage: product [--level L] [--threads T] [--products K] [--rows S] [--double | --single]
-//                  [--recompute] [--setting ETA M]...
+//                  [--recompute] [--no-local] [--local D ETA_T MIN] [--setting ETA M]...
 // Default settings: (0.5, 6) (0.4, 7) (0.3, 7) (0.3, 8) at level 6 (n = 49,152).
 #include <panelrad/operator/collocation.hpp>
 #include <panelrad/operator/fast_operator.hpp>
@@ -41,6 +45,7 @@ int main(int argc, char** argv) {
   int level = 6, products = 9, rows = 256;
   int precision = -1;  // -1: the library's default for a convex scene, 0: double, 1: single
   bool recompute = false;
+  LocalExpansionOptions local;
   std::vector<std::pair<double, int>> settings;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--level") && i + 1 < argc) {
@@ -57,12 +62,18 @@ int main(int argc, char** argv) {
       precision = 1;
     } else if (!std::strcmp(argv[i], "--recompute")) {
       recompute = true;
+    } else if (!std::strcmp(argv[i], "--no-local")) {
+      local.enabled = false;
+    } else if (!std::strcmp(argv[i], "--local") && i + 3 < argc) {
+      local.degree = std::atoi(argv[++i]);
+      local.eta = std::atof(argv[++i]);
+      local.min_points = std::atoi(argv[++i]);
     } else if (!std::strcmp(argv[i], "--setting") && i + 2 < argc) {
       const double eta = std::atof(argv[++i]);
       settings.emplace_back(eta, std::atoi(argv[++i]));
     } else {
       std::cerr << "usage: product [--level L] [--threads T] [--products K] [--rows S] [--double | --single] "
-                   "[--recompute] [--setting ETA M]...\n";
+                   "[--recompute] [--no-local] [--local D ETA_T MIN] [--setting ETA M]...\n";
       return 2;
     }
   }
@@ -79,6 +90,7 @@ int main(int argc, char** argv) {
       FastOptions o;
       o.eta = eta;
       o.degree = degree;
+      o.local = local;
       if (precision >= 0) o.single_precision_coefficients = precision == 1;
       if (recompute) o.far_storage_limit = 1;
       clock.restart();
@@ -106,8 +118,13 @@ int main(int argc, char** argv) {
                   median(single), median(block), static_cast<double>(op.bytes()) / 1e6,
                   static_cast<double>(op.bytes()) / static_cast<double>(col.size()));
       for (const SelfCheckVector& c : check.vectors) std::printf(" %.2e", c.relative_error);
-      std::printf("  (%.2e)  setup: geometry %.3f, coverings %.3f, far %.3f s\n", check.relative_error, s.geometry_s,
-                  s.covering_s, s.far_s);
+      std::printf("  (%.2e)  setup: geometry %.3f, targets %.3f, coverings %.3f, far %.3f s", check.relative_error,
+                  s.geometry_s, s.targets_s, s.covering_s, s.far_s);
+      if (s.target_level >= 0)
+        std::printf("; local: levels 0..%d, d %d, %zu targets, %zu pairs for %zu point pairs\n", s.target_level,
+                    s.local_degree, s.target_clusters, s.target_pairs, s.target_point_pairs);
+      else
+        std::printf("; local: none\n");
       std::fflush(stdout);
     }
     std::printf("self-check vectors:");

@@ -21,7 +21,8 @@ namespace {
 const char* kCubeUsage =
     "usage: panelrad cube [--levels L] [--min-level L0] [--method dense|fast] [--near exact|quadrature]\n"
     "                     [--mu K] [--rule stroud7|three_point|degreeK] [--eta E] [--degree M]\n"
-    "                     [--solver auto|neumann|gmres|lu] [--tol T|auto] [--threads T] [--csv PATH]\n"
+    "                     [--solver auto|neumann|gmres|lu] [--tol T|auto] [--target-clusters on|off]\n"
+    "                     [--threads T] [--csv PATH]\n"
     "  Solves the paper's cube example (rho 0.5/0.4/0.3, u = x^2+y^2+z^2) for n = 12 * 4^l,\n"
     "  l = L0..L (default 0..3), and prints a table like the paper's Table 1 / Tables 2-4.\n"
     "  --tol auto (default) iterates until the iteration error is ~1e-5 h/diam, far below the\n"
@@ -29,7 +30,9 @@ const char* kCubeUsage =
     "  --accuracy auto|manual: auto (the default) picks method, near rule, eta and M per level so\n"
     "  that the error stays within 5% of the discretization error at the least measured cost\n"
     "  (auto_parameters.hpp); any of --method --near --mu --rule --eta --degree, or --solver lu,\n"
-    "  means manual (defaults for the rest: dense, exact near field, eta 0.2, M 2).\n";
+    "  means manual (defaults for the rest: dense, exact near field, eta 0.2, M 2).\n"
+    "  --target-clusters off: the fast method's per-point coverings alone, as in the paper (default\n"
+    "  on: large target clusters share the far field through local expansions).\n";
 
 /// --csv PATH: a file (the empty path: no CSV); a path whose last part names a directory ("d/",
 /// "d/.", "..") is a usage error.
@@ -74,6 +77,10 @@ void add_cube_options(CLI::App& app, CubeCommandLine& line) {
       ->type_name("auto|neumann|gmres|lu")
       ->check(one_of({"auto", "neumann", "gmres", "lu"}));
   app.add_option("--tol", o.solver.tolerance)->type_name("T|auto")->transform(tolerance_in(1e-15, 0.5));
+  app.add_option_function<std::string>("--target-clusters",
+                                       [&o](const std::string& v) { o.op.local.enabled = v == "on"; })
+      ->type_name("on|off")
+      ->check(one_of({"on", "off"}));
   app.add_option("--threads", line.threads)->type_name("T")->transform(thread_count());
   app.add_option("--csv", line.csv)->type_name("PATH")->check(csv_file());
 }

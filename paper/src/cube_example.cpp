@@ -17,8 +17,11 @@ std::vector<LevelMemoryEstimate> check_paper_cube_fits(const CubeRunOptions& opt
     throw std::invalid_argument("levels: need 0 <= min_level <= max_level");
   const Scene scene = make_paper_cube_scene();
   std::vector<PlannedLevel> planned;
-  for (int level = options.min_level; level <= options.max_level; ++level)
-    planned.push_back({level, automatic_parameters ? choose_parameters(problem_size(scene.mesh(), level)) : options.op});
+  for (int level = options.min_level; level <= options.max_level; ++level) {
+    OperatorOptions op = automatic_parameters ? choose_parameters(problem_size(scene.mesh(), level)) : options.op;
+    op.local = options.op.local;
+    planned.push_back({level, op});
+  }
   LevelMemoryOptions memory;
   memory.collocation_vectors = 3;  // rho, E and the manufactured u (31)
   const std::vector<LevelMemoryEstimate> levels =

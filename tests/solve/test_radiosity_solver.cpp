@@ -287,7 +287,7 @@ TEST(RadiositySolver, OptionsCompareByValue) {
   EXPECT_NE(a, b);
   FastOptions f;
   f.degree = 6;
-  EXPECT_EQ(static_cast<const ClusteringParameters&>(f), (ClusteringParameters{0.2, 6}));
+  EXPECT_EQ(static_cast<const ClusteringParameters&>(f), (ClusteringParameters{0.2, 6, LocalExpansionOptions{}}));
 
   for (OperatorMethod m : {OperatorMethod::automatic, OperatorMethod::dense, OperatorMethod::fast})
     EXPECT_EQ(parse_operator_method(to_string(m)), m);

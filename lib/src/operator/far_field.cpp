@@ -206,13 +206,21 @@ void shift_moments_of_degree(const double* m_child, double dx, double dy, double
     xp[i] = xp[i - 1] * dx;
     yp[i] = yp[i - 1] * dy;
   }
+  // The weights C(p,i) dx^(p-i) and C(q,j) dy^(q-j), once per shift (each product rounded as in
+  // C(p,i) dx^(p-i) m_ij evaluated left to right).
+  double wx[M + 1][M + 1], wy[M + 1][M + 1];
+  for (int p = 0; p <= M; ++p)
+    for (int i = 0; i <= p; ++i) {
+      wx[p][i] = kBinomial.v[p][i] * xp[p - i];
+      wy[p][i] = kBinomial.v[p][i] * yp[p - i];
+    }
   // t_pj = sum_{i<=p} C(p,i) dx^(p-i) m_ij, for p + j <= M.
   double t[num_taylor_terms(M)];
   for (int n = 0; n <= M; ++n) {
     for (int j = 0; j <= n; ++j) {
       const int p = n - j;
       double s = 0.0;
-      for (int i = 0; i <= p; ++i) s += kBinomial.v[p][i] * xp[p - i] * m_child[taylor_index(i, j)];
+      for (int i = 0; i <= p; ++i) s += wx[p][i] * m_child[taylor_index(i, j)];
       t[taylor_index(p, j)] = s;
     }
   }
@@ -221,7 +229,7 @@ void shift_moments_of_degree(const double* m_child, double dx, double dy, double
     for (int q = 0; q <= n; ++q) {
       const int p = n - q;
       double s = 0.0;
-      for (int j = 0; j <= q; ++j) s += kBinomial.v[q][j] * yp[q - j] * t[taylor_index(p, j)];
+      for (int j = 0; j <= q; ++j) s += wy[q][j] * t[taylor_index(p, j)];
       m_parent[taylor_index(p, q)] += s;
     }
   }

@@ -102,6 +102,48 @@ bool add_recomputed_row(const Kernels& kernels, int M, const RowPoint& row, cons
   return true;
 }
 
+double point_total(const double* acc, int c, int w) {
+  static_assert(kPartialSums == 4);
+  const auto at = [&](int r) { return acc[(r * kSeries + c) * kLanes + w]; };
+  return (at(0) + at(1)) + (at(2) + at(3));
+}
+
+bool add_points(const Kernels& kernels, int M, const RowPoint* points, int count_points, const PlaneFrame* frames,
+                const std::int32_t* clusters, std::int64_t count, const double* moments, int C, double* out) {
+  const std::size_t stride = static_cast<std::size_t>(num_taylor_terms(M)) * static_cast<std::size_t>(C);
+  const auto fn = kernels.points[M];
+  const int groups = (count_points + kLanes - 1) / kLanes;
+  constexpr int kMaxGroups = 48;  // up to 192 points: (kMaxLocalDegree + 1)^2 = 169
+  if (groups > kMaxGroups) return false;
+  PointLanes lanes[kMaxGroups];
+  alignas(32) double acc[kMaxGroups][kSetSize] = {};
+  for (int g = 0; g < groups; ++g)
+    for (int w = 0; w < kLanes; ++w) {
+      const RowPoint& p = points[std::min(count_points - 1, g * kLanes + w)];  // a full last group: repeat the last point
+      for (int k = 0; k < 3; ++k) {
+        lanes[g].P[k][w] = p.P[k];
+        lanes[g].nP[k][w] = p.nP[k];
+      }
+      lanes[g].factor[w] = p.factor;
+    }
+  for (std::int64_t j = 0; j < count; ++j) {
+    const PlaneFrame& f = frames[clusters[j]];
+    double frame[12];
+    for (int k = 0; k < 3; ++k) {
+      frame[k] = f.origin[k];
+      frame[3 + k] = f.e1[k];
+      frame[6 + k] = f.e2[k];
+      frame[9 + k] = f.normal[k];
+    }
+    const double* m = moments + static_cast<std::size_t>(clusters[j]) * stride;
+    for (int g = 0; g < groups; ++g)
+      if (!fn(lanes[g], frame, m, C, acc[g])) return false;
+  }
+  for (int q = 0; q < count_points; ++q)
+    for (int c = 0; c < C; ++c) out[q * C + c] = point_total(acc[q / kLanes], c, q % kLanes);
+  return true;
+}
+
 }  // namespace panelrad::far_field_batch
 
 namespace panelrad {

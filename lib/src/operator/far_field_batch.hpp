@@ -52,6 +52,12 @@ struct RowPoint {
   double P[3], nP[3], factor;
 };
 
+/// kLanes points of the row side, lane by lane (the interpolation points of a target cluster's
+/// local expansion): P, n_P and the factor of lane w at P[k][w], nP[k][w], factor[w].
+struct PointLanes {
+  alignas(32) double P[3][kLanes], nP[3][kLanes], factor[kLanes];
+};
+
 /// The frames of kLanes clusters, lane by lane: component k of lane w at v[k][w], k = 0..2 the
 /// origin A(tau), 3..5 e1, 6..8 e2, 9..11 the normal.
 struct FrameLanes {
@@ -70,8 +76,10 @@ struct Kernels {
   /// The coefficients as above, summed with the moments into acc, C in 1..4.
   bool (*recomputed[kMaxDegree + 1])(const RowPoint& row, const FrameLanes& frames, const double* const* m,
                                            int C, double* acc);
-  /// Stored coefficients of kLanes consecutive pairs (pair w's T terms at coef[w * T]) summed
-  /// with the moments into acc, C in 1..4.
+  /// kLanes points against one cluster: frame = its origin, e1, e2, normal (12 doubles), m its
+  /// moments (term t of column c at m[t C + c]); lane w of acc sums point w's pairs, C in 1..4.
+  /// False when some lane's P coincides with A(tau) or is not finite.
+  bool (*points[kMaxDegree + 1])(const PointLanes& points, const double* frame, const double* m, int C, double* acc);
 };
 
 /// Baseline x86-64 (or whatever the build targets): always available.
@@ -91,6 +99,18 @@ struct RowSums {
   /// (out of line, like every function declared here: see the note at the top).
   double total(int c) const;
 };
+
+/// Point w's far field (47) in column c from an accumulator set of `kernels.points`: its
+/// kPartialSums partial sums added in a fixed order.
+double point_total(const double* acc, int c, int w);
+
+/// The far field (47) of `count` clusters (ids clusters[j], in order) at each of `count_points`
+/// points (P, n_P, factor of point q at points[q]), C columns: out[q C + c]. The points go
+/// kLanes at a time into the lanes of `kernels.points`, every point's sum in the clusters' order,
+/// so each value is independent of the others. False when some P coincides with an A(tau) or is
+/// not finite.
+bool add_points(const Kernels& kernels, int M, const RowPoint* points, int count_points, const PlaneFrame* frames,
+                const std::int32_t* clusters, std::int64_t count, const double* moments, int C, double* out);
 
 /// The rho-scaled Taylor coefficients of the single pair (row, frame), T values in c: lane 0 of
 /// `kernels.coefficients`, so bit-identical to that pair's coefficients in any batch (the lanes

@@ -64,15 +64,14 @@ constexpr int index_of(int p, int q) { return (p + q) * (p + q + 1) / 2 + q; }
 //   n F_n = 2(n+1) u F_{n-1} - (n+2) w F_{n-2},  F_0 = 1, F_1 = 4u;
 // then c_n = (l0 F_n + l1 X F_{n-1}/X + l2 Y F_{n-1}/Y) hn / r^(2+n), l0 = (A-P).nP / r,
 // l_i = e_i.nP, hn = d.nQ / r. False when some lane's r is 0 or not finite.
+// The point's side (P, n_P, factor) and the cluster's frame (A, e1, e2, n_Q) are given per lane:
+// lane_coefficients (one point, kLanes clusters) and point_lane_coefficients (kLanes points, one
+// cluster) load them and share this body, which computes the same operations in either case.
 template <int M>
-[[gnu::always_inline]] inline bool lane_coefficients(const RowPoint& row, const FrameLanes& fr, V* c) {
-  V dn[3], e1[3], e2[3], nq[3];
-  for (int k = 0; k < 3; ++k) {
-    dn[k] = splat(row.P[k]) - load(fr.v[k]);
-    e1[k] = load(fr.v[3 + k]);
-    e2[k] = load(fr.v[6 + k]);
-    nq[k] = load(fr.v[9 + k]);
-  }
+[[gnu::always_inline]] inline bool lane_coefficients_of(const V* P, const V* nP, V factor, const V* A, const V* e1,
+                                                        const V* e2, const V* nq, V* c) {
+  V dn[3];
+  for (int k = 0; k < 3; ++k) dn[k] = P[k] - A[k];
   const V rho = lane_sqrt(madd(dn[2], dn[2], madd(dn[1], dn[1], dn[0] * dn[0])));
   const VI ok = (rho > 0.0) & (rho < __builtin_inf());  // false for NaN
   if (!(ok[0] & ok[1] & ok[2] & ok[3])) return false;
@@ -81,7 +80,7 @@ template <int M>
   const V a1 = madd(dn[2], e1[2], madd(dn[1], e1[1], dn[0] * e1[0]));
   const V a2 = madd(dn[2], e2[2], madd(dn[1], e2[1], dn[0] * e2[0]));
   const V hn = madd(dn[2], nq[2], madd(dn[1], nq[1], dn[0] * nq[0]));
-  const V np0 = splat(row.nP[0]), np1 = splat(row.nP[1]), np2 = splat(row.nP[2]);
+  const V np0 = nP[0], np1 = nP[1], np2 = nP[2];
   const V l0 = -madd(dn[2], np2, madd(dn[1], np1, dn[0] * np0));
   const V l1 = madd(e1[2], np2, madd(e1[1], np1, e1[0] * np0));
   const V l2 = madd(e2[2], np2, madd(e2[1], np1, e2[0] * np0));
@@ -110,7 +109,7 @@ template <int M>
   }
 
   // (l0 + l1 X + l2 Y) sum F_n truncated at degree M, times hn rho/pi, unscaled by r^-(2+n).
-  V scale = hn * inv * inv * splat(row.factor);
+  V scale = hn * inv * inv * factor;
   c[0] = l0 * scale;
   for (int n = 1; n <= M; ++n) {
     scale *= inv;
@@ -122,6 +121,34 @@ template <int M>
     cn[n] = madd(l2, F1[n - 1], l0 * Fn[n]) * scale;
   }
   return true;
+}
+
+template <int M>
+[[gnu::always_inline]] inline bool lane_coefficients(const RowPoint& row, const FrameLanes& fr, V* c) {
+  V P[3], nP[3], A[3], e1[3], e2[3], nq[3];
+  for (int k = 0; k < 3; ++k) {
+    P[k] = splat(row.P[k]);
+    nP[k] = splat(row.nP[k]);
+    A[k] = load(fr.v[k]);
+    e1[k] = load(fr.v[3 + k]);
+    e2[k] = load(fr.v[6 + k]);
+    nq[k] = load(fr.v[9 + k]);
+  }
+  return lane_coefficients_of<M>(P, nP, splat(row.factor), A, e1, e2, nq, c);
+}
+
+template <int M>
+[[gnu::always_inline]] inline bool point_lane_coefficients(const PointLanes& pts, const double* frame, V* c) {
+  V P[3], nP[3], A[3], e1[3], e2[3], nq[3];
+  for (int k = 0; k < 3; ++k) {
+    P[k] = load(pts.P[k]);
+    nP[k] = load(pts.nP[k]);
+    A[k] = splat(frame[k]);
+    e1[k] = splat(frame[3 + k]);
+    e2[k] = splat(frame[6 + k]);
+    nq[k] = splat(frame[9 + k]);
+  }
+  return lane_coefficients_of<M>(P, nP, load(pts.factor), A, e1, e2, nq, c);
 }
 
 // Column k, lane w, partial sum r: acc[(r kSeries + k) kLanes + w] += sum over the terms
@@ -164,6 +191,37 @@ template <int C>
     for (int k = 0; k < C; ++k) store(acc + (r * kSeries + k) * kLanes, a[r][k]);
 }
 
+// The same sums with one cluster's moments m (term t of column k at m[t C + k]) for every lane.
+template <int C>
+[[gnu::always_inline]] inline void add_common_terms(int T, const double* m, double* acc, const V* c) {
+  V a[kPartialSums][C];
+  for (int r = 0; r < kPartialSums; ++r)
+    for (int k = 0; k < C; ++k) a[r][k] = load(acc + (r * kSeries + k) * kLanes);
+  for (int t = 0; t < T; ++t)
+    for (int k = 0; k < C; ++k) a[t % kPartialSums][k] = madd(c[t], splat(m[t * C + k]), a[t % kPartialSums][k]);
+  for (int r = 0; r < kPartialSums; ++r)
+    for (int k = 0; k < C; ++k) store(acc + (r * kSeries + k) * kLanes, a[r][k]);
+}
+
+template <int M, int C>
+[[gnu::always_inline]] inline bool points_columns(const PointLanes& pts, const double* frame, const double* m,
+                                                  double* acc) {
+  V c[terms_of(M)];
+  if (!point_lane_coefficients<M>(pts, frame, c)) return false;
+  add_common_terms<C>(terms_of(M), m, acc, c);
+  return true;
+}
+
+template <int M>
+bool points_of_degree(const PointLanes& pts, const double* frame, const double* m, int C, double* acc) {
+  switch (C) {
+    case 1: return points_columns<M, 1>(pts, frame, m, acc);
+    case 2: return points_columns<M, 2>(pts, frame, m, acc);
+    case 3: return points_columns<M, 3>(pts, frame, m, acc);
+    default: return points_columns<M, 4>(pts, frame, m, acc);
+  }
+}
+
 template <int M>
 bool coefficients_of_degree(const RowPoint& row, const FrameLanes& frames, double* out) {
   V c[terms_of(M)];
@@ -194,7 +252,7 @@ bool recomputed_of_degree(const RowPoint& row, const FrameLanes& frames, const d
 
 template <int... Ms>
 constexpr Kernels make_kernels(const char* name) {
-  return Kernels{name, {&coefficients_of_degree<Ms>...}, {&recomputed_of_degree<Ms>...}};
+  return Kernels{name, {&coefficients_of_degree<Ms>...}, {&recomputed_of_degree<Ms>...}, {&points_of_degree<Ms>...}};
 }
 
 constexpr Kernels kLaneKernels = make_kernels<0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12>(PANELRAD_LANES_NAME);

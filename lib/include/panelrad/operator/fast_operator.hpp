@@ -28,6 +28,7 @@ namespace panelrad {
 namespace far_field_batch {
 struct RowPoint;
 }
+struct TargetClusters;
 
 /// Rows [begin, end) of K_n, the rows P_i whose coverings (42) an operator holds; end = -1 means
 /// n. The default is every row.
@@ -36,6 +37,9 @@ struct RowRange {
   geometry::Index end = -1;
   bool operator==(const RowRange&) const = default;
 };
+
+/// The automatic interpolation degree for Taylor degree M: M up to 4, then max(4, M - 3).
+int default_local_degree(int M);
 
 /// eta of (41) and M of (44) (ClusteringParameters), the near rule, the storage limits and the
 /// rows held.
@@ -98,11 +102,17 @@ struct FastStatistics {
   std::size_t partial_pairs = 0;       ///< occluded: pairs classified partly visible (refined or clipped)
   std::size_t clipped_elements = 0;    ///< occluded: near-field elements integrated over their visible part
   std::size_t rays_cast = 0;           ///< rays cast for V (0: every decision is a shaft classification)
+  int target_level = -1;               ///< finest level of target clusters (-1: per-point coverings only)
+  int local_degree = 0;                ///< d of the local expansions
+  std::size_t target_clusters = 0;     ///< target clusters with a local expansion (with sources)
+  std::size_t target_pairs = 0;        ///< (target, source) cluster pairs of the local expansions
+  std::size_t target_point_pairs = 0;  ///< the (point, cluster) pairs they stand for: sum of |sigma| over the pairs
   bool far_stored = false;             ///< coefficients stored (true) or recomputed per product
   std::size_t bytes = 0;               ///< bytes held by the operator
   double geometry_s = 0;   ///< setup: cluster frames and element moments
   double covering_s = 0;   ///< setup: minimal admissible coverings (42) and near-field integrals (43)
   double far_s = 0;        ///< setup: far-field Taylor coefficients (44)-(45), when stored
+  double targets_s = 0;    ///< setup: target clusters and their sources (local expansions)
 };
 
 /// One test vector of the self-check and its worst error over the sampled rows.
@@ -215,8 +225,11 @@ class FastOperator final : public RadiosityOperator {
   static std::size_t fixed_bytes(std::size_t n, std::size_t clusters, int degree, std::size_t rows);
 
   /// Cluster ids of the far field and element ids of the near field of row i (for tests: the
-  /// covering plus the skipped coplanar clusters must partition the surface). Cluster id =
-  /// level_offset(l) + k. Row i must be held (std::out_of_range otherwise).
+  /// covering plus the skipped coplanar clusters must partition the surface). The far field is
+  /// the sources of the local expansions of P_i's target ancestors (levels 0..target_level, coarse
+  /// to fine), then P_i's per-point covering; empty for a row not computed (rho = 0, or a probe's
+  /// row not sampled). Cluster id = level_offset(l) + k. Row i must be held (std::out_of_range
+  /// otherwise).
   std::vector<geometry::Index> far_clusters(geometry::Index i) const;
   std::vector<geometry::Index> near_elements(geometry::Index i) const;
   /// Global id of cluster k of level l and its inverse.
@@ -236,6 +249,18 @@ class FastOperator final : public RadiosityOperator {
   std::vector<RowBlock> cover_rows();
   void store_coverings(std::vector<RowBlock>& blocks);
   void setup_far_coefficients();
+  void setup_target_clusters();
+  bool row_computed(geometry::Index i) const;
+  /// The target clusters of levels 0..target_level containing row i, coarse to fine, that have
+  /// a local expansion (a slot), appended to `out`.
+  void append_target_ancestors(geometry::Index i, std::vector<geometry::Index>& out) const;
+  /// The values at their interpolation points of the local expansions of `targets` (ids with a
+  /// slot), C columns of moments interleaved; into values[slot (d+1)^2 C + k C + c].
+  void evaluate_local_expansions(const double* moments, int C, const std::vector<geometry::Index>& targets,
+                                 std::vector<double>& values) const;
+  /// Row i's local-expansion part for C columns (the interpolants of its ancestors' values).
+  template <int C>
+  void add_local_expansions(geometry::Index i, const double* values, double* sum) const;
   std::size_t held_bytes() const;
   std::size_t coefficient_bytes() const { return options_.single_precision_coefficients ? sizeof(float) : sizeof(double); }
   std::size_t local_row(geometry::Index i, const char* who) const;
@@ -248,12 +273,12 @@ class FastOperator final : public RadiosityOperator {
   /// Row i's side of its far pairs (P_i in the far field's unit, n_P, rho_i/pi).
   far_field_batch::RowPoint far_row_point(geometry::Index i) const;
   double apply_row(geometry::Index i, const Eigen::VectorXd& v, const std::vector<double>& moments,
-                   double* scratch) const;
+                   const std::vector<double>& local_values, double* scratch) const;
   /// Row i of the product for C vectors: out[c] = (K_n v_c)_i, each from its own moments, every
   /// sum in apply_row's order; v and moments hold the C columns interleaved (j C + c).
   template <int C>
-  void apply_row_columns(geometry::Index i, const double* v, const double* moments, double* scratch,
-                         double* out) const;
+  void apply_row_columns(geometry::Index i, const double* v, const double* moments, const double* local_values,
+                         double* scratch, double* out) const;
 
   std::shared_ptr<const geometry::ClusterTree> tree_;
   FastOptions options_;
@@ -285,6 +310,11 @@ class FastOperator final : public RadiosityOperator {
   LargeBuffer far_coef_;                         // uninitialized, huge pages, filled in parallel
   LargeArray<float> far_coef_single_;            // the same, single_precision_coefficients
   std::vector<char> probed_;                     // probe_samples > 0: per row held, covered or not
+  // Local expansions of target clusters: the clusters and their sources, the slot of each target
+  // id's values in a product (-1: none), and the targets with a slot in slot order.
+  std::shared_ptr<const TargetClusters> targets_;
+  std::vector<std::int64_t> local_slot_;
+  std::vector<geometry::Index> active_targets_;
   FastStatistics stats_;
 };
 

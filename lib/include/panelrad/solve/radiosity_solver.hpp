@@ -68,6 +68,7 @@ struct RadiositySolverOptions {
   /// fast: `manual`.
   OperatorMethod method = OperatorMethod::automatic;
   /// Near rule, eta and M when method is dense or fast (manual.method is replaced by `method`).
+  /// Its `local` (the target clusters' local expansions) applies to automatic parameters too.
   OperatorOptions manual;
   /// Fast method with manual parameters: tighten them after a failed self-check, as automatic
   /// parameters always are (step 6).

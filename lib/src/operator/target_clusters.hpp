@@ -1,0 +1,64 @@
+#pragma once
+// The cluster-cluster part of the minimal admissible coverings (42): target clusters sigma of the
+// levels 0..lt of the tree, each with the source clusters admissible for all of it (taken by its
+// local expansion, local_expansion.hpp), and for each cluster of level lt the clusters where the
+// per-point coverings of its collocation points start. For every collocation point P of sigma,
+// the sources of P's ancestors of levels 0..lt, the clusters skipped as coplanar with P and P's
+// per-point covering of the starts partition the surface, as the covering from the roots does.
+//
+// A pair (sigma, tau) is admissible when, with c and R_b the centre and half-diagonal of the
+// rectangle bounding sigma (LocalBox) and D = |c - A(tau)|,
+//   (i)  R(tau) <= eta (D - R_b):   every point of the rectangle satisfies (41) for tau, so the
+//        Taylor far field (44)-(47) at the interpolation points has the per-point error bound;
+//   (ii) R_b <= eta_t (D - R(tau)): the rectangle is small against its distance from tau, which
+//        sets the interpolation's rate (local_expansion.hpp).
+// Both are decided by the exact-on-doubles test of (41) (geometry::is_admissible) with the
+// radius R(tau) + eta R_b (resp. R_b + eta_t R(tau)) rounded upward: conservative, never a pair
+// that the exact condition would refuse. A non-admissible tau is split when it is not a leaf and
+// at least as large as the rectangle (R(tau) >= R_b); otherwise it is handed to sigma's children,
+// and from level lt to the per-point coverings.
+#include <panelrad/geometry/cluster_tree.hpp>
+#include <panelrad/operator/local_expansion.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace panelrad {
+
+/// Cluster k of level l.
+struct ClusterRef {
+  int level = 0;
+  geometry::Index k = 0;
+};
+
+struct TargetClusters {
+  int finest_level = -1;  ///< lt; -1: no target clusters (per-point coverings from the roots)
+  int degree = 0;         ///< d of the local expansions
+  /// Per target cluster, by cluster id (ids of levels 0..lt): the rectangle in the cluster's
+  /// frame, and the CSR of its sources (cluster ids).
+  std::vector<LocalBox> box;
+  std::vector<std::int64_t> source_start;
+  std::vector<geometry::Index> source;
+  /// Per cluster k of level lt: the CSR of the clusters where its points' coverings start.
+  std::vector<std::int64_t> start_start;
+  std::vector<ClusterRef> start;
+  /// Per root (level-0 cluster): the roots skipped as coplanar with it (each point of the root
+  /// skips them too).
+  std::vector<std::int32_t> coplanar_roots;
+
+  bool empty() const { return finest_level < 0; }
+  std::int64_t sources(geometry::Index id) const {
+    return source_start[static_cast<std::size_t>(id) + 1] - source_start[static_cast<std::size_t>(id)];
+  }
+  std::size_t bytes() const;
+};
+
+/// The target clusters of levels 0..lt of `tree` (lt in [0, finest level]) with local
+/// expansions of degree d. `frames` are the clusters' frames by cluster id (origin A(tau) scaled
+/// by unit_scale, a power of two), `level_offset` the first id of each level. Deterministic for
+/// any thread count.
+TargetClusters build_target_clusters(const geometry::ClusterTree& tree, const std::vector<PlaneFrame>& frames,
+                                     const std::vector<geometry::Index>& level_offset, double unit_scale, double eta,
+                                     double eta_t, int lt, int d);
+
+}  // namespace panelrad
