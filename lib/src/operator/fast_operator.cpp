@@ -266,16 +266,19 @@ void FastOperator::setup_target_clusters() {
   local_slot_.assign(static_cast<std::size_t>(num_targets), -1);
   for (int l = 0; l <= lt; ++l)
     for (Index k = 0; k < tree.level_size(l); ++k) {
+      // A slot for every target with a computed row whose own or inherited expansion is not empty.
       const Index id = cluster_id(l, k);
-      if (!has_row[static_cast<std::size_t>(id)] || targets->sources(id) == 0) continue;
+      const bool inherits = l > 0 && local_slot_[static_cast<std::size_t>(cluster_id(l - 1, k / 4))] >= 0;
+      if (!has_row[static_cast<std::size_t>(id)] || (targets->sources(id) == 0 && !inherits)) continue;
       local_slot_[static_cast<std::size_t>(id)] = static_cast<std::int64_t>(active_targets_.size());
       active_targets_.push_back(id);
+      if (targets->sources(id) == 0) continue;
+      ++stats_.target_clusters;
       stats_.target_pairs += static_cast<std::size_t>(targets->sources(id));
       stats_.target_point_pairs += static_cast<std::size_t>(targets->sources(id)) << (2 * (L - l));
     }
   stats_.target_level = lt;
   stats_.local_degree = d;
-  stats_.target_clusters = active_targets_.size();
   targets_ = std::move(targets);
 }
 
@@ -581,6 +584,7 @@ void FastOperator::evaluate_local_expansions(const double* moments, int C, const
 #pragma omp parallel for schedule(dynamic, 1)
   for (Index t = 0; t < count; ++t) {
     const Index id = targets[static_cast<std::size_t>(t)];
+    if (targets_->sources(id) == 0) continue;  // inherits its parent's expansion only
     const auto [l, k] = cluster_of_id(id);
     const PlaneFrame& frame = frame_[static_cast<std::size_t>(id)];
     const Vec3& normal = tree_->cluster(l, k).normal;
@@ -600,6 +604,34 @@ void FastOperator::evaluate_local_expansions(const double* moments, int C, const
   if (failed)
     throw std::invalid_argument("FastOperator: an interpolation point of a target cluster coincides with the centre "
                                 "A(tau) of one of its sources or is not finite");
+  // Downward, level by level: each target adds its parent's expansion, evaluated at its own points
+  // (the parent's interpolant, a tensor polynomial of degree d, is re-interpolated exactly up to
+  // rounding: the child's rectangle lies in the parent's, in the same plane).
+  const std::size_t C_ = static_cast<std::size_t>(C);
+  for (int l = 1; l <= targets_->finest_level; ++l) {  // targets is ascending: level l's ids are one range
+    const auto begin = std::lower_bound(targets.begin(), targets.end(), level_offset_[static_cast<std::size_t>(l)]);
+    const auto end = std::lower_bound(begin, targets.end(), level_offset_[static_cast<std::size_t>(l) + 1]);
+    const std::int64_t first = begin - targets.begin(), last = end - targets.begin();
+#pragma omp parallel for schedule(static)
+    for (std::int64_t t = first; t < last; ++t) {
+      const Index id = targets[static_cast<std::size_t>(t)];
+      const Index parent = cluster_id(l - 1, (id - cluster_id(l, 0)) / 4);
+      const std::int64_t parent_slot = local_slot_[static_cast<std::size_t>(parent)];
+      if (parent_slot < 0) continue;
+      const PlaneFrame& frame = frame_[static_cast<std::size_t>(id)];
+      Vec3 points[num_local_points(kMaxLocalDegree)];
+      targets_->box[static_cast<std::size_t>(id)].points(frame, d, points);
+      const LocalBox& parent_box = targets_->box[static_cast<std::size_t>(parent)];
+      const PlaneFrame& parent_frame = frame_[static_cast<std::size_t>(parent)];
+      const double* from = values.data() + static_cast<std::size_t>(parent_slot) * table;
+      double* out = values.data() + static_cast<std::size_t>(local_slot_[static_cast<std::size_t>(id)]) * table;
+      for (int q = 0; q < N; ++q) {
+        double part[4];
+        parent_box.interpolate(parent_frame, d, from, C, points[q], part);
+        for (std::size_t c = 0; c < C_; ++c) out[static_cast<std::size_t>(q) * C_ + c] += part[c];
+      }
+    }
+  }
 }
 
 template <int C>
@@ -608,15 +640,14 @@ void FastOperator::add_local_expansions(Index i, const double* values, double* s
   const int d = targets_->degree;
   const std::size_t table = static_cast<std::size_t>(num_local_points(d)) * C;
   const Vec3 P = unit_scale_ * point_[static_cast<std::size_t>(i)];
-  for (int l = 0; l <= targets_->finest_level; ++l) {
-    const Index id = cluster_id(l, i >> (2 * (L - l)));
-    const std::int64_t slot = local_slot_[static_cast<std::size_t>(id)];
-    if (slot < 0) continue;
-    double part[C];
-    targets_->box[static_cast<std::size_t>(id)].interpolate(frame_[static_cast<std::size_t>(id)], d,
-                                                             values + static_cast<std::size_t>(slot) * table, C, P, part);
-    for (int c = 0; c < C; ++c) sum[c] += part[c];
-  }
+  const int l = targets_->finest_level;  // its expansion holds those of its ancestors (evaluate_local_expansions)
+  const Index id = cluster_id(l, i >> (2 * (L - l)));
+  const std::int64_t slot = local_slot_[static_cast<std::size_t>(id)];
+  if (slot < 0) return;
+  double part[C];
+  targets_->box[static_cast<std::size_t>(id)].interpolate(frame_[static_cast<std::size_t>(id)], d,
+                                                           values + static_cast<std::size_t>(slot) * table, C, P, part);
+  for (int c = 0; c < C; ++c) sum[c] += part[c];
 }
 
 namespace {

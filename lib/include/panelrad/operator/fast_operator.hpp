@@ -254,11 +254,14 @@ class FastOperator final : public RadiosityOperator {
   /// The target clusters of levels 0..target_level containing row i, coarse to fine, that have
   /// a local expansion (a slot), appended to `out`.
   void append_target_ancestors(geometry::Index i, std::vector<geometry::Index>& out) const;
-  /// The values at their interpolation points of the local expansions of `targets` (ids with a
-  /// slot), C columns of moments interleaved; into values[slot (d+1)^2 C + k C + c].
+  /// The values at their interpolation points of the local expansions of `targets` (ascending ids
+  /// with a slot, each one's parent among them when it has a slot), C columns of moments
+  /// interleaved, into values[slot (d+1)^2 C + k C + c]: each target's own sources, plus its
+  /// parent's expansion evaluated at its points.
   void evaluate_local_expansions(const double* moments, int C, const std::vector<geometry::Index>& targets,
                                  std::vector<double>& values) const;
-  /// Row i's local-expansion part for C columns (the interpolants of its ancestors' values).
+  /// Row i's local-expansion part for C columns: the interpolant of its target cluster of level
+  /// target_level, whose values hold its ancestors' expansions too.
   template <int C>
   void add_local_expansions(geometry::Index i, const double* values, double* sum) const;
   std::size_t held_bytes() const;
