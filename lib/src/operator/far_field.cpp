@@ -200,7 +200,8 @@ namespace {
 
 template <int M>
 void shift_moments_of_degree(const double* m_child, double dx, double dy, double* m_parent) {
-  double xp[M + 1], yp[M + 1];
+  constexpr int K = M + 1;
+  double xp[K], yp[K];
   xp[0] = yp[0] = 1.0;
   for (int i = 1; i <= M; ++i) {
     xp[i] = xp[i - 1] * dx;
@@ -208,31 +209,34 @@ void shift_moments_of_degree(const double* m_child, double dx, double dy, double
   }
   // The weights C(p,i) dx^(p-i) and C(q,j) dy^(q-j), once per shift (each product rounded as in
   // C(p,i) dx^(p-i) m_ij evaluated left to right).
-  double wx[M + 1][M + 1], wy[M + 1][M + 1];
+  double wx[K][K], wy[K][K];
   for (int p = 0; p <= M; ++p)
     for (int i = 0; i <= p; ++i) {
       wx[p][i] = kBinomial.v[p][i] * xp[p - i];
       wy[p][i] = kBinomial.v[p][i] * yp[p - i];
     }
-  // t_pj = sum_{i<=p} C(p,i) dx^(p-i) m_ij, for p + j <= M.
-  double t[num_taylor_terms(M)];
-  for (int n = 0; n <= M; ++n) {
-    for (int j = 0; j <= n; ++j) {
-      const int p = n - j;
+  // The child's moments in a square array, ms[j][i] = m_ij (i + j <= M): contiguous in i.
+  double ms[K][K];
+  for (int n = 0; n <= M; ++n)
+    for (int j = 0; j <= n; ++j) ms[j][n - j] = m_child[taylor_index(n - j, j)];
+  // t[p][j] = sum_{i<=p} C(p,i) dx^(p-i) m_ij, for p + j <= M: contiguous in i and in j.
+  double t[K][K];
+  for (int j = 0; j <= M; ++j)
+    for (int p = 0; p + j <= M; ++p) {
       double s = 0.0;
-      for (int i = 0; i <= p; ++i) s += wx[p][i] * m_child[taylor_index(i, j)];
-      t[taylor_index(p, j)] = s;
+#pragma GCC unroll 16
+      for (int i = 0; i <= p; ++i) s += wx[p][i] * ms[j][i];
+      t[p][j] = s;
     }
-  }
   // m'_pq = sum_{j<=q} C(q,j) dy^(q-j) t_pj.
-  for (int n = 0; n <= M; ++n) {
+  for (int n = 0; n <= M; ++n)
     for (int q = 0; q <= n; ++q) {
       const int p = n - q;
       double s = 0.0;
-      for (int j = 0; j <= q; ++j) s += wy[q][j] * t[taylor_index(p, j)];
+#pragma GCC unroll 16
+      for (int j = 0; j <= q; ++j) s += wy[q][j] * t[p][j];
       m_parent[taylor_index(p, q)] += s;
     }
-  }
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
@@ -536,7 +537,7 @@ void FastOperator::compute_moments(const Eigen::VectorXd& v, std::vector<double>
   const geometry::ClusterTree& tree = *tree_;
   const int L = tree.finest_level();
   const std::size_t T = static_cast<std::size_t>(terms_);
-  moments.assign(static_cast<std::size_t>(level_offset_.back()) * T, 0.0);
+  moments.resize(static_cast<std::size_t>(level_offset_.back()) * T);  // every entry is written below
   const std::size_t leaf0 = static_cast<std::size_t>(level_offset_[static_cast<std::size_t>(L)]);
 #pragma omp parallel for schedule(static)
   for (Index e = 0; e < n_; ++e) {
@@ -550,6 +551,7 @@ void FastOperator::compute_moments(const Eigen::VectorXd& v, std::vector<double>
 #pragma omp parallel for schedule(static)
     for (Index k = 0; k < size; ++k) {
       double* m = &moments[static_cast<std::size_t>(cluster_id(l, k)) * T];
+      std::fill(m, m + T, 0.0);
       for (Index c = 0; c < 4; ++c) {
         const Index child = cluster_id(l + 1, 4 * k + c);
         const auto& d = to_parent_[static_cast<std::size_t>(child)];
@@ -740,7 +742,11 @@ void FastOperator::apply(const Eigen::VectorXd& v, Eigen::VectorXd& y) const {
 
 void FastOperator::apply_rows(const Eigen::VectorXd& v, Eigen::VectorXd& y_block) const {
   if (v.size() != n_) throw std::invalid_argument("FastOperator::apply_rows: vector size differs from n");
-  std::vector<double> moments, local_values;
+  std::unique_lock<std::mutex> lock(workspace_mutex_, std::try_to_lock);  // a concurrent product: its own
+  ProductWorkspace own;
+  ProductWorkspace& w = lock.owns_lock() ? workspace_ : own;
+  std::vector<double>& moments = w.moments;
+  std::vector<double>& local_values = w.local_values;
   compute_moments(v, moments);
   if (targets_) evaluate_local_expansions(moments.data(), 1, active_targets_, local_values);
   const Index rows = row_end_ - row_begin_;
@@ -762,7 +768,13 @@ void FastOperator::apply_block(const Eigen::MatrixXd& V, Eigen::MatrixXd& Y) con
   const Index columns = static_cast<Index>(V.cols());
   Y.resize(n_, columns);
   const std::size_t n = static_cast<std::size_t>(n_);
-  std::vector<double> moments, v_block, m_block, local_values;
+  std::unique_lock<std::mutex> lock(workspace_mutex_, std::try_to_lock);  // a concurrent product: its own
+  ProductWorkspace own;
+  ProductWorkspace& w = lock.owns_lock() ? workspace_ : own;
+  std::vector<double>& moments = w.moments;
+  std::vector<double>& v_block = w.v_block;
+  std::vector<double>& m_block = w.m_block;
+  std::vector<double>& local_values = w.local_values;
   for (Index first = 0; first < columns; first += kBlockColumns) {
     const int C = static_cast<int>(std::min<Index>(kBlockColumns, columns - first));
     // The group's columns and their moments (48), interleaved: entry j of column c at j C + c.
