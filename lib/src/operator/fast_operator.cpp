@@ -197,7 +197,7 @@ void FastOperator::setup_cluster_frames() {
   for (int l = 0; l <= L; ++l) level_offset_[static_cast<std::size_t>(l) + 1] = level_offset_[static_cast<std::size_t>(l)] + tree.level_size(l);
   const Index num_clusters = level_offset_.back();
   frame_.resize(static_cast<std::size_t>(num_clusters));
-  to_parent_.assign(static_cast<std::size_t>(num_clusters), {0.0, 0.0});
+  to_parent_.resize(static_cast<std::size_t>(num_clusters));
   for (int l = 0; l <= L; ++l) {
     const Index m = tree.level_size(l);
 #pragma omp parallel for schedule(static)
@@ -205,9 +205,9 @@ void FastOperator::setup_cluster_frames() {
       const Cluster& c = tree.cluster(l, k);
       const Index id = cluster_id(l, k);
       frame_[static_cast<std::size_t>(id)] = make_plane_frame(unit_scale_ * c.centre, c.normal);
-      if (l > 0)
-        to_parent_[static_cast<std::size_t>(id)] =
-            frame_[static_cast<std::size_t>(cluster_id(l - 1, k / 4))].local(unit_scale_ * c.centre);
+      to_parent_[static_cast<std::size_t>(id)] =
+          l > 0 ? frame_[static_cast<std::size_t>(cluster_id(l - 1, k / 4))].local(unit_scale_ * c.centre)
+                : std::array<double, 2>{0.0, 0.0};
     }
   }
 }
@@ -254,7 +254,7 @@ void FastOperator::setup_target_clusters() {
   report_stage("fast operator: target clusters of levels 0.." + std::to_string(lt) + " and their local expansions, d " +
                std::to_string(d));
   auto targets = std::make_shared<TargetClusters>(
-      build_target_clusters(tree, frame_, level_offset_, unit_scale_, options_.eta, eta_t, lt, d));
+      build_target_clusters(tree, frame_.data(), level_offset_, unit_scale_, options_.eta, eta_t, lt, d));
   // Targets containing a computed row: marked on level lt, then up the tree.
   const Index num_targets = level_offset_[static_cast<std::size_t>(lt) + 1];
   std::vector<char> has_row(static_cast<std::size_t>(num_targets), 0);

@@ -34,7 +34,7 @@ std::size_t TargetClusters::bytes() const {
          source.size() * sizeof(Index) + start.size() * sizeof(ClusterRef) + coplanar_roots.size() * sizeof(std::int32_t);
 }
 
-TargetClusters build_target_clusters(const geometry::ClusterTree& tree, const std::vector<PlaneFrame>& frames,
+TargetClusters build_target_clusters(const geometry::ClusterTree& tree, const PlaneFrame* frames,
                                      const std::vector<Index>& level_offset, double unit_scale, double eta,
                                      double eta_t, int lt, int d) {
   const int L = tree.finest_level();

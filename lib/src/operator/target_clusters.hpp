@@ -54,10 +54,10 @@ struct TargetClusters {
 };
 
 /// The target clusters of levels 0..lt of `tree` (lt in [0, finest level]) with local
-/// expansions of degree d. `frames` are the clusters' frames by cluster id (origin A(tau) scaled
+/// expansions of degree d. `frames` are the clusters' frames by cluster id (level_offset's last entry of them) (origin A(tau) scaled
 /// by unit_scale, a power of two), `level_offset` the first id of each level. Deterministic for
 /// any thread count.
-TargetClusters build_target_clusters(const geometry::ClusterTree& tree, const std::vector<PlaneFrame>& frames,
+TargetClusters build_target_clusters(const geometry::ClusterTree& tree, const PlaneFrame* frames,
                                      const std::vector<geometry::Index>& level_offset, double unit_scale, double eta,
                                      double eta_t, int lt, int d);
 

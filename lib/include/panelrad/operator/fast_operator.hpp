@@ -12,6 +12,7 @@
 #include <panelrad/operator/collocation.hpp>
 #include <panelrad/operator/far_field.hpp>
 #include <panelrad/support/large_buffer.hpp>
+#include <panelrad/support/uninitialized_vector.hpp>
 #include <panelrad/operator/linear_operator.hpp>
 #include <panelrad/operator/near_field.hpp>
 
@@ -290,11 +291,12 @@ class FastOperator final : public RadiosityOperator {
   geometry::Index row_begin_ = 0, row_end_ = 0;   // the rows held, [begin, end)
   int terms_ = 0;                                 // (M+1)(M+2)/2
   std::vector<geometry::Index> level_offset_;     // first global id of each level
-  std::vector<double> rho_;                       // rho(P_i), all n rows
-  std::vector<Vec3> point_, normal_;              // P_i, n_P, all n rows
+  // The per-cluster and per-row arrays are sized once and filled by parallel loops (first touch).
+  UninitializedVector<double> rho_;               // rho(P_i), all n rows
+  UninitializedVector<Vec3> point_, normal_;      // P_i, n_P, all n rows
   double unit_scale_ = 1;                         // far field in units of 2^k ~ diameter (exact scaling)
-  std::vector<PlaneFrame> frame_;                 // per cluster: origin A(tau) (scaled), axes of its plane
-  std::vector<std::array<double, 2>> to_parent_;  // per non-root cluster: its A in parent's frame
+  UninitializedVector<PlaneFrame> frame_;         // per cluster: origin A(tau) (scaled), axes of its plane
+  UninitializedVector<std::array<double, 2>> to_parent_;  // per cluster: its A in parent's frame (roots: 0)
   LargeBuffer element_moments_;                  // per element: Int_Delta x^p y^q dS about A(Delta)
   // Near field (CSR over the rows held, row i at i - begin): element index and rho_i/pi Int G.
   // CSR rather than Eigen::SparseMatrix<double, RowMajor, StorageIndex>, measured on the cube,
@@ -306,11 +308,11 @@ class FastOperator final : public RadiosityOperator {
   // 0.012 / 0.013 s). Here the near sum is fused with the far sum of the same row; it is < 1% of
   // a product (0.44 s at n = 196608, two threads).
   std::vector<std::int64_t> near_start_;
-  std::vector<geometry::Index> near_col_;
-  std::vector<double> near_val_;
+  UninitializedVector<geometry::Index> near_col_;
+  UninitializedVector<double> near_val_;
   // Far field (CSR over the rows held): cluster id and, when stored, the rho-scaled Taylor coefficients.
   std::vector<std::int64_t> far_start_;
-  std::vector<geometry::Index> far_cluster_;
+  UninitializedVector<geometry::Index> far_cluster_;
   LargeBuffer far_coef_;                         // uninitialized, huge pages, filled in parallel
   LargeArray<float> far_coef_single_;            // the same, single_precision_coefficients
   std::vector<char> probed_;                     // probe_samples > 0: per row held, covered or not
