@@ -7,6 +7,7 @@
 #include <panelrad/operator/dense_operator.hpp>
 #include <panelrad/operator/fast_operator.hpp>
 #include <panelrad/operator/local_expansion.hpp>
+#include <panelrad/operator/operator_factory.hpp>
 #include <panelrad/scene/scene.hpp>
 
 #include "test_support.hpp"
@@ -242,6 +243,24 @@ TEST_F(CubeLevel4, DeterministicAcrossThreadsBlocksRowsAndProbes) {
   ASSERT_EQ(a.vectors.size(), b.vectors.size());
   for (std::size_t k = 0; k < a.vectors.size(); ++k) EXPECT_EQ(a.vectors[k].relative_error, b.vectors[k].relative_error);
   EXPECT_GT(b.relative_error, 0);
+}
+
+// With V (occluders given) the coverings stay per point; below min_points nothing changes either:
+// the same coverings and product, bit for bit, as with target clusters off.
+TEST_F(CubeLevel4, PerPointWhenOccludedOrTooSmall) {
+  FastOptions occluded = options(4);
+  occluded.occluders = scene_occluders(collocation->tree());
+  EXPECT_EQ(FastOperator(*collocation, occluded).statistics().target_level, -1);
+  FastOptions small = options(4);
+  small.local.min_points = 1 << 20;  // more points than any cluster holds
+  const FastOperator a(*collocation, small), b(*collocation, options(4, false));
+  EXPECT_EQ(a.statistics().target_level, -1);
+  EXPECT_EQ(a.statistics().far_pairs, b.statistics().far_pairs);
+  const Eigen::VectorXd v = random_vector(collocation->size(), 4);
+  Eigen::VectorXd ya, yb;
+  a.apply(v, ya);
+  b.apply(v, yb);
+  EXPECT_EQ(0, std::memcmp(ya.data(), yb.data(), sizeof(double) * static_cast<std::size_t>(collocation->size())));
 }
 
 TEST_F(CubeLevel4, RefusesBadLocalOptions) {
