@@ -7,6 +7,7 @@
 #include <panelrad/scene/scene.hpp>
 #include <panelrad/solve/solvers.hpp>
 
+#include "paper_cube_fixture.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -29,24 +30,7 @@ double relative_product_error(const RadiosityOperator& fast, const DenseOperator
   return (yf - yd).lpNorm<Eigen::Infinity>() / yd.lpNorm<Eigen::Infinity>();
 }
 
-struct CubeLevel3 : ::testing::Test {
-  static void SetUpTestSuite() {
-    scene = new Scene(make_paper_cube_scene());
-    collocation = new Collocation(*scene, 3);  // n = 768
-    dense = new DenseOperator(*collocation, NearFieldOptions{});
-  }
-  static void TearDownTestSuite() {
-    delete dense;
-    delete collocation;
-    delete scene;
-  }
-  static Scene* scene;
-  static Collocation* collocation;
-  static DenseOperator* dense;
-};
-Scene* CubeLevel3::scene = nullptr;
-Collocation* CubeLevel3::collocation = nullptr;
-DenseOperator* CubeLevel3::dense = nullptr;
+using CubeLevel3 = panelrad::testing::PaperCubeFixture<3>;  // n = 768
 
 // The paper's parameters with the exact near field: the product is within 1e-3 of dense.
 TEST_F(CubeLevel3, MatchesDenseProductOnRandomVectors) {

@@ -10,6 +10,7 @@
 #include <panelrad/operator/operator_factory.hpp>
 #include <panelrad/scene/scene.hpp>
 
+#include "paper_cube_fixture.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -116,17 +117,7 @@ TEST(ChebyshevInterpolant, RefusesBadArguments) {
 }
 
 // The cube at level 4 (n = 3072) with target clusters of 16 points or more (levels 0..2).
-struct CubeLevel4 : ::testing::Test {
-  static void SetUpTestSuite() {
-    scene = new Scene(make_paper_cube_scene());
-    collocation = new Collocation(*scene, 4);
-    dense = new DenseOperator(*collocation, NearFieldOptions{});
-  }
-  static void TearDownTestSuite() {
-    delete dense;
-    delete collocation;
-    delete scene;
-  }
+struct CubeLevel4 : panelrad::testing::PaperCubeFixture<4> {
   static FastOptions options(int d, bool local = true) {
     FastOptions o;
     o.eta = 0.5;
@@ -142,13 +133,7 @@ struct CubeLevel4 : ::testing::Test {
     dense->apply(v, yd);
     return (yf - yd).lpNorm<Eigen::Infinity>() / yd.lpNorm<Eigen::Infinity>();
   }
-  static Scene* scene;
-  static Collocation* collocation;
-  static DenseOperator* dense;
 };
-Scene* CubeLevel4::scene = nullptr;
-Collocation* CubeLevel4::collocation = nullptr;
-DenseOperator* CubeLevel4::dense = nullptr;
 
 // Against the dense product: the interpolation error falls with d, and at d = M = 6 the product
 // is as accurate as the per-point product (within 25%: the target pairs obey a stricter
