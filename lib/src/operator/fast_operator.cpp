@@ -238,8 +238,9 @@ void FastOperator::setup_element_data(const Collocation& collocation) {
 }
 
 // The target clusters of the cluster-cluster far field (target_clusters.hpp): levels 0..lt,
-// lt the finest level whose clusters hold at least min_points collocation points. Only the
-// targets with sources and some row computed get a slot for their values in a product.
+// lt the finest level whose clusters hold at least min_points collocation points. A target gets a
+// slot for its values in a product when it holds a computed row and has sources of its own or a
+// parent with a slot (whose expansion it inherits).
 void FastOperator::setup_target_clusters() {
   const LocalExpansionOptions& local = options_.local;
   const geometry::ClusterTree& tree = *tree_;

@@ -4,6 +4,10 @@
 // admissible clusters (41) are taken whole and integrated by the degree-M Taylor far field
 // (44)-(48); non-admissible leaves form the near field (43), integrated once at setup and stored
 // sparse. Clusters coplanar with P_i contribute exactly 0 and are skipped; rows with rho = 0 too.
+// On convex scenes, target clusters (groups of collocation points, the triangles of the coarser
+// levels) take the sources admissible for all of their points through one local expansion each
+// (local_expansion.hpp, target_clusters.hpp): the per-point coverings then start where the
+// targets stopped (LocalExpansionOptions; off, the paper's per-point coverings alone).
 // An operator may own only the rows [begin, end) of K_n (FastOptions::rows): the coverings (42),
 // near field (43) and far coefficients (44)-(45) of those rows; the cluster moments (48) of a
 // product still need all of v.
