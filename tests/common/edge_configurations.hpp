@@ -25,4 +25,16 @@ inline Neighbour neighbour_point(double alpha_deg, double x, double dist) {
   return {Vec3(x, 0, 0) + dist * d, Vec3(0, std::sin(al), -std::cos(al))};
 }
 
+/// The short names of the tests of this configuration (`using namespace` it at file scope):
+/// the triangle (a, b, c) with inner normal nQ = +z, pi, and the neighbouring points.
+namespace edge_triangle {
+inline const Vec3& a = kEdgeA;
+inline const Vec3& b = kEdgeB;
+inline const Vec3& c = kApexC;
+inline const Vec3& nQ = kTriangleNormal;
+inline constexpr double kPi = std::numbers::pi;
+using testing::Neighbour;
+using testing::neighbour_point;
+}  // namespace edge_triangle
+
 }  // namespace panelrad::testing

@@ -24,13 +24,7 @@ using panelrad::geometry::Index;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-const Vec3& a = panelrad::testing::kEdgeA;  // the triangle (a, b, c), inner normal nQ = +z
-const Vec3& b = panelrad::testing::kEdgeB;
-const Vec3& c = panelrad::testing::kApexC;
-const Vec3& nQ = panelrad::testing::kTriangleNormal;
-using panelrad::testing::Neighbour;
-using panelrad::testing::neighbour_point;
+using namespace panelrad::testing::edge_triangle;  // the triangle (a, b, c), inner normal nQ = +z
 
 std::array<double, 6> nodal_values(const std::function<double(const Vec3&)>& f, const Vec3& A,
                                    const Vec3& B, const Vec3& C) {

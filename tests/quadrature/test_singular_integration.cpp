@@ -24,13 +24,7 @@ using namespace panelrad::quadrature;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-const Vec3& a = panelrad::testing::kEdgeA;  // the triangle (a, b, c), inner normal nQ = +z
-const Vec3& b = panelrad::testing::kEdgeB;
-const Vec3& c = panelrad::testing::kApexC;
-const Vec3& nQ = panelrad::testing::kTriangleNormal;
-using panelrad::testing::Neighbour;
-using panelrad::testing::neighbour_point;
+using namespace panelrad::testing::edge_triangle;  // the triangle (a, b, c), inner normal nQ = +z
 
 double u_poly(const Vec3& q) { return q.x() * q.x() + q.y() * q.y() + q.z() * q.z(); }  // (31)
 double smooth(const Vec3& q) { return std::exp(q.x() - 0.5 * q.y()) + q.x() * q.y(); }
