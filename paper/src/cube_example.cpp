@@ -24,6 +24,7 @@ std::vector<LevelMemoryEstimate> check_paper_cube_fits(const CubeRunOptions& opt
   }
   LevelMemoryOptions memory;
   memory.collocation_vectors = 3;  // rho, E and the manufactured u (31)
+  memory.target_clusters = true;   // the cube is convex
   const std::vector<LevelMemoryEstimate> levels =
       estimate_levels_memory(scene.mesh(), planned, options.solver, scene.max_reflectivity(), memory);
   refuse_levels_that_cannot_fit(levels, "cube ");

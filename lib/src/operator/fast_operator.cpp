@@ -13,8 +13,10 @@
 #include <limits>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <mutex>
+#include <span>
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
@@ -110,20 +112,25 @@ FastOperator::FastOperator(const Collocation& collocation, const FastOptions& op
   n_ = tree_->num_elements();
   std::tie(row_begin_, row_end_) = resolve_rows(options_.rows, n_);
   terms_ = num_taylor_terms(options_.degree);
+  Stopwatch clock;
+  // The target clusters first (small: levels 0..lt), so that the memory gate counts the
+  // per-point coverings that start below them.
+  std::shared_ptr<TargetClusters> targets = make_target_clusters(*tree_, options_);
+  stats_.targets_s = clock.seconds();
   if (options_.probe_samples > 0) {
     probed_.assign(static_cast<std::size_t>(row_end_ - row_begin_), 0);
     for (const Index i : self_check_rows(options_.probe_samples)) probed_[static_cast<std::size_t>(i - row_begin_)] = 1;
   } else {
-    refuse_beyond_memory(collocation);  // a probe holds a few rows beside the arrays of (48)
+    refuse_beyond_memory(collocation, targets.get());  // a probe holds a few rows beside the arrays of (48)
   }
-  Stopwatch clock;
+  clock.restart();
   report_stage("fast operator, n = " + std::to_string(n_) + rows_note() + ": cluster frames and element moments");
   setup_cluster_frames();
   setup_element_data(collocation);
   stats_.geometry_s = clock.seconds();
   clock.restart();
-  setup_target_clusters();
-  stats_.targets_s = clock.seconds();
+  setup_target_clusters(std::move(targets));
+  stats_.targets_s += clock.seconds();
   clock.restart();
   {
     char eta[32];
@@ -170,8 +177,8 @@ void FastOperator::report_stage(const std::string& what) const {
 }
 
 // Refuses what will not fit, before any large allocation.
-void FastOperator::refuse_beyond_memory(const Collocation& collocation) const {
-  const MemoryEstimate est = estimate_memory(collocation, options_.eta, options_.degree, rows());
+void FastOperator::refuse_beyond_memory(const Collocation& collocation, const TargetClusters* targets) const {
+  const MemoryEstimate est = estimate_memory(collocation, options_.eta, options_.degree, rows(), targets);
   const std::size_t peak = est.bytes + est.list_bytes;
   const std::size_t limit = options_.memory_limit ? options_.memory_limit : available_memory_bytes();
   if (peak > limit)
@@ -187,14 +194,8 @@ void FastOperator::refuse_beyond_memory(const Collocation& collocation) const {
 void FastOperator::setup_cluster_frames() {
   const geometry::ClusterTree& tree = *tree_;
   const int L = tree.finest_level();
-  // The far field works in the length unit 2^k ~ diameter of the surface: G dS is invariant under
-  // scaling (G ~ length^-2), and scaling by a power of two is exact, so the Taylor coefficients
-  // (~ |P-A|^-(2+p+q)) and moments (~ R^(2+p+q)) stay far from overflow and underflow at any
-  // scene size that validation accepts (lengths 1e-75 .. 1e75), up to M = 12.
-  unit_scale_ = std::ldexp(1.0, -std::ilogb(tree.diameter()));
-  level_offset_.resize(static_cast<std::size_t>(L) + 2);
-  level_offset_[0] = 0;
-  for (int l = 0; l <= L; ++l) level_offset_[static_cast<std::size_t>(l) + 1] = level_offset_[static_cast<std::size_t>(l)] + tree.level_size(l);
+  unit_scale_ = far_field_unit(tree);
+  level_offset_ = level_offsets(tree);
   const Index num_clusters = level_offset_.back();
   frame_.resize(static_cast<std::size_t>(num_clusters));
   to_parent_.resize(static_cast<std::size_t>(num_clusters));
@@ -212,50 +213,115 @@ void FastOperator::setup_cluster_frames() {
   }
 }
 
-// Element moments (48) Int_Delta x^p y^q dS about A(Delta), and rho(P_i), P_i, n_P of every
+// Element moments (48) Int_Delta x^p y^q dS about A(Delta), by shape, and rho(P_i) of every
 // element (all n: the moments of a product and the self-check's vectors need the whole surface).
+//
+// Uniform midpoint subdivision makes every element of a root triangle Delta_0 congruent to it:
+// children 0..2 of (a, b, c) are the parent scaled by 1/2 about a, b and c, child 3 (ab, bc, ca)
+// is the parent scaled by -1/2 about its centroid. So element Delta of level L is
+// s Delta_0 + t with s = (-1)^j 2^-L, j the number of digits 3 in its path from the root
+// (element_parity), and its circumcentre is s A(Delta_0) + t. Its frame has the root's axes
+// (e1, e2 depend on the normal alone), hence, in local coordinates about A,
+//   Int_Delta x^p y^q dS = s^(p+q) |s|^2 Int_Delta0 x^p y^q dS
+// (x = s x0, dS = s^2 dS0): two moment sets per root, the root's own scaled by the power of two
+// 2^-L(p+q+2) (exact), with the odd degrees negated for odd j. They stand for the moments of the
+// stored corners (midpoints rounded to double) up to that rounding: relative 2^-52 of the
+// coordinates, i.e. 2^(L-52) of an element's size, far below the Taylor remainder (46).
 void FastOperator::setup_element_data(const Collocation& collocation) {
   const geometry::ClusterTree& tree = *tree_;
   const int L = tree.finest_level();
+  const int M = options_.degree;
   const std::size_t T = static_cast<std::size_t>(terms_);
-  element_moments_ = LargeBuffer(static_cast<std::size_t>(n_) * T);  // first touched in parallel below
-#pragma omp parallel for schedule(static)
-  for (Index e = 0; e < n_; ++e) {
-    const Cluster& c = tree.cluster(L, e);
-    triangle_moments(frame_[static_cast<std::size_t>(cluster_id(L, e))], unit_scale_ * c.vertex[0],
-                     unit_scale_ * c.vertex[1], unit_scale_ * c.vertex[2], options_.degree,
-                     &element_moments_[static_cast<std::size_t>(e) * T]);
+  const Index n0 = tree.num_roots();
+  shape_moments_.resize(static_cast<std::size_t>(n0) * (L == 0 ? 1 : 2) * T);  // level 0: every element is even
+  for (Index r = 0; r < n0; ++r) {
+    const Cluster& root = tree.cluster(0, r);
+    double* even = &shape_moments_[static_cast<std::size_t>(L == 0 ? r : 2 * r) * T];
+    double* odd = L == 0 ? nullptr : even + T;
+    triangle_moments(frame_[static_cast<std::size_t>(cluster_id(0, r))], unit_scale_ * root.vertex[0],
+                     unit_scale_ * root.vertex[1], unit_scale_ * root.vertex[2], M, even);
+    for (int k = 0; k <= M; ++k)
+      for (int q = 0; q <= k; ++q) {
+        const std::size_t t = static_cast<std::size_t>(taylor_index(k - q, q));
+        even[t] = std::ldexp(even[t], -L * (k + 2));
+        if (odd) odd[t] = k % 2 == 0 ? even[t] : -even[t];
+      }
   }
   rho_.resize(static_cast<std::size_t>(n_));
-  point_.resize(static_cast<std::size_t>(n_));
-  normal_.resize(static_cast<std::size_t>(n_));
 #pragma omp parallel for schedule(static)
-  for (Index i = 0; i < n_; ++i) {
-    rho_[static_cast<std::size_t>(i)] = collocation.reflectivity()[i];
-    point_[static_cast<std::size_t>(i)] = collocation.collocation_point(i);
-    normal_[static_cast<std::size_t>(i)] = collocation.normal(i);
-  }
+  for (Index i = 0; i < n_; ++i) rho_[static_cast<std::size_t>(i)] = collocation.reflectivity()[i];
 }
 
-// The target clusters of the cluster-cluster far field (target_clusters.hpp): levels 0..lt,
-// lt the finest level whose clusters hold at least min_points collocation points. A target gets a
-// slot for its values in a product when it holds a computed row and has sources of its own or a
-// parent with a slot (whose expansion it inherits).
-void FastOperator::setup_target_clusters() {
-  const LocalExpansionOptions& local = options_.local;
+// The moments of element e's shape (setup_element_data): those of its root, even or odd.
+const double* FastOperator::element_moments(Index e) const {
+  const int L = tree_->finest_level();
+  if (L == 0) return &shape_moments_[static_cast<std::size_t>(e) * static_cast<std::size_t>(terms_)];
+  const std::uint64_t path = static_cast<std::uint64_t>(e) & ((std::uint64_t{1} << (2 * L)) - 1);  // base-4 digits below the root
+  const std::uint64_t threes = path & (path >> 1) & 0x5555555555555555ULL;  // digit 3: both bits set
+  const std::size_t shape = 2 * static_cast<std::size_t>(e >> (2 * L)) + static_cast<std::size_t>(std::popcount(threes) & 1);
+  return &shape_moments_[shape * static_cast<std::size_t>(terms_)];
+}
+
+// The levels, degree and eta_t of the target clusters of an operator of `options` on a tree of
+// finest level L: levels 0..lt, lt the finest level whose clusters hold at least min_points
+// collocation points; lt = -1 when there are none (local expansions off, an occluded scene, or
+// no level with that many points).
+FastOperator::TargetPlan FastOperator::target_plan(const FastOptions& options, int L) {
+  const LocalExpansionOptions& local = options.local;
+  TargetPlan plan;
+  plan.degree = local.degree >= 0 ? local.degree : default_local_degree(options.degree);
+  plan.eta = local.eta > 0 ? local.eta : options.eta;
+  const std::int64_t min_points = local.min_points > 0 ? local.min_points : num_local_points(plan.degree) + 1;
+  if (!local.enabled || options.occluders) return plan;
+  for (int l = 0; l <= L; ++l)
+    if ((std::int64_t{1} << (2 * (L - l))) >= min_points) plan.level = l;
+  return plan;
+}
+
+// The far field's length unit 2^k ~ diameter of the surface: G dS is invariant under scaling
+// (G ~ length^-2), and scaling by a power of two is exact, so the Taylor coefficients
+// (~ |P-A|^-(2+p+q)) and moments (~ R^(2+p+q)) stay far from overflow and underflow at any scene
+// size that validation accepts (lengths 1e-75 .. 1e75), up to M = 12.
+double FastOperator::far_field_unit(const geometry::ClusterTree& tree) { return std::ldexp(1.0, -std::ilogb(tree.diameter())); }
+
+// Global cluster ids: the first id of each level l = 0..L+1 (the last: the number of clusters).
+std::vector<Index> FastOperator::level_offsets(const geometry::ClusterTree& tree) {
+  const int L = tree.finest_level();
+  std::vector<Index> offset(static_cast<std::size_t>(L) + 2, 0);
+  for (int l = 0; l <= L; ++l) offset[static_cast<std::size_t>(l) + 1] = offset[static_cast<std::size_t>(l)] + tree.level_size(l);
+  return offset;
+}
+
+// The target clusters of target_plan with their sources (build_target_clusters), from the frames
+// of the target levels (the same frames setup_cluster_frames makes); null when there are none.
+std::shared_ptr<TargetClusters> FastOperator::make_target_clusters(const geometry::ClusterTree& tree,
+                                                                   const FastOptions& options) {
+  const TargetPlan plan = target_plan(options, tree.finest_level());
+  if (plan.level < 0) return nullptr;
+  const std::vector<Index> offset = level_offsets(tree);
+  const double unit = far_field_unit(tree);
+  std::vector<PlaneFrame> frames(static_cast<std::size_t>(offset[static_cast<std::size_t>(plan.level) + 1]));
+  for (int l = 0; l <= plan.level; ++l) {
+    const Index m = tree.level_size(l);
+#pragma omp parallel for schedule(static)
+    for (Index k = 0; k < m; ++k) {
+      const Cluster& c = tree.cluster(l, k);
+      frames[static_cast<std::size_t>(offset[static_cast<std::size_t>(l)] + k)] = make_plane_frame(unit * c.centre, c.normal);
+    }
+  }
+  return std::make_shared<TargetClusters>(
+      build_target_clusters(tree, frames.data(), offset, unit, options.eta, plan.eta, plan.level, plan.degree));
+}
+
+// The target clusters' slots: a target gets a slot for its values in a product when it holds a
+// computed row and has sources of its own or a parent with a slot (whose expansion it inherits).
+void FastOperator::setup_target_clusters(std::shared_ptr<TargetClusters> targets) {
+  if (!targets) return;
   const geometry::ClusterTree& tree = *tree_;
   const int L = tree.finest_level();
-  const int d = local.degree >= 0 ? local.degree : default_local_degree(options_.degree);
-  const double eta_t = local.eta > 0 ? local.eta : options_.eta;
-  const std::int64_t min_points = local.min_points > 0 ? local.min_points : num_local_points(d) + 1;
-  int lt = -1;
-  for (int l = 0; l <= L; ++l)
-    if ((std::int64_t{1} << (2 * (L - l))) >= min_points) lt = l;
-  if (!local.enabled || options_.occluders || lt < 0) return;
+  const int lt = targets->finest_level;
   report_stage("fast operator: target clusters of levels 0.." + std::to_string(lt) + " and their local expansions, d " +
-               std::to_string(d));
-  auto targets = std::make_shared<TargetClusters>(
-      build_target_clusters(tree, frame_.data(), level_offset_, unit_scale_, options_.eta, eta_t, lt, d));
+               std::to_string(targets->degree));
   // Targets containing a computed row: marked on level lt, then up the tree.
   const Index num_targets = level_offset_[static_cast<std::size_t>(lt) + 1];
   std::vector<char> has_row(static_cast<std::size_t>(num_targets), 0);
@@ -280,7 +346,7 @@ void FastOperator::setup_target_clusters() {
       stats_.target_point_pairs += static_cast<std::size_t>(targets->sources(id)) << (2 * (L - l));
     }
   stats_.target_level = lt;
-  stats_.local_degree = d;
+  stats_.local_degree = targets->degree;
   targets_ = std::move(targets);
 }
 
@@ -321,8 +387,8 @@ std::vector<FastOperator::RowBlock> FastOperator::cover_rows() {
         continue;
       }
       if (!probed_.empty() && !probed_[static_cast<std::size_t>(i - row_begin_)]) continue;  // a probe's row not sampled
-      const Vec3& P = point_[static_cast<std::size_t>(i)];
-      const Vec3& nP = normal_[static_cast<std::size_t>(i)];
+      const Vec3& P = tree.collocation_point(i);
+      const Vec3& nP = tree.cluster(L, i).normal;
       std::int64_t nn = 0, nf = 0;
       const auto add_far = [&](int l, Index k) {
         blk.far_cluster.push_back(cluster_id(l, k));
@@ -459,7 +525,7 @@ std::size_t FastOperator::held_bytes() const {
   return near_col_.size() * sizeof(Index) + near_val_.size() * sizeof(double) + far_cluster_.size() * sizeof(Index) +
          far_coef_.bytes() + far_coef_single_.bytes() + (near_start_.size() + far_start_.size()) * sizeof(std::int64_t) +
          frame_.size() * sizeof(PlaneFrame) + to_parent_.size() * sizeof(to_parent_[0]) +
-         element_moments_.bytes() +
+         shape_moments_.size() * sizeof(double) + rho_.size() * sizeof(double) +
          num_clusters * static_cast<std::size_t>(terms_) * sizeof(double) /* moments per product */ +
          (targets_ ? targets_->bytes() + local_slot_.size() * sizeof(std::int64_t) + active_targets_.size() * sizeof(Index) +
                          active_targets_.size() * static_cast<std::size_t>(num_local_points(targets_->degree)) *
@@ -469,6 +535,16 @@ std::size_t FastOperator::held_bytes() const {
 
 FastOperator::MemoryEstimate FastOperator::estimate_memory(const Collocation& collocation, double eta, int degree,
                                                            const RowRange& row_range) {
+  return estimate_memory(collocation, eta, degree, row_range, nullptr);
+}
+
+FastOperator::MemoryEstimate FastOperator::estimate_memory(const Collocation& collocation, const FastOptions& options) {
+  const std::shared_ptr<TargetClusters> targets = make_target_clusters(collocation.tree(), options);
+  return estimate_memory(collocation, options.eta, options.degree, options.rows, targets.get());
+}
+
+FastOperator::MemoryEstimate FastOperator::estimate_memory(const Collocation& collocation, double eta, int degree,
+                                                           const RowRange& row_range, const TargetClusters* targets) {
   const geometry::ClusterTree& tree = collocation.tree();
   const Index n = tree.num_elements();
   const auto [begin, end] = resolve_rows(row_range, n);
@@ -484,7 +560,14 @@ FastOperator::MemoryEstimate FastOperator::estimate_memory(const Collocation& co
     const Index i = begin + static_cast<Index>((static_cast<std::int64_t>(s) * m + m / 2) / samples);
     if (collocation.reflectivity()[i] == 0) continue;
     ++sampled;
-    cover(tree, collocation.collocation_point(i), tree.plane(L, i), eta, nullptr, 0, [&](int, Index) { ++far; },
+    const ClusterRef* starts = nullptr;  // the per-point covering from the roots, or below P's targets
+    std::int64_t count = 0;
+    if (targets) {
+      const std::size_t a = static_cast<std::size_t>(i >> (2 * (L - targets->finest_level)));
+      starts = targets->start.data() + targets->start_start[a];
+      count = targets->start_start[a + 1] - targets->start_start[a];
+    }
+    cover(tree, collocation.collocation_point(i), tree.plane(L, i), eta, starts, count, [&](int, Index) { ++far; },
           [&](Index) { ++near; }, [] {});
   }
   MemoryEstimate e;
@@ -494,6 +577,12 @@ FastOperator::MemoryEstimate FastOperator::estimate_memory(const Collocation& co
   e.list_bytes = near_pairs * (sizeof(Index) + sizeof(double)) + e.far_pairs * sizeof(Index);
   e.coefficient_bytes = e.far_pairs * T * sizeof(double);
   e.bytes = e.list_bytes + fixed_bytes(static_cast<std::size_t>(n), clusters, degree, static_cast<std::size_t>(m));
+  if (targets) {  // the targets and their sources, a slot each and its values in a product (every target with one)
+    const std::size_t num_targets = targets->box.size();
+    e.bytes += targets->bytes() +
+               num_targets * (sizeof(std::int64_t) + sizeof(Index) +
+                              static_cast<std::size_t>(num_local_points(targets->degree)) * sizeof(double));
+  }
   return e;
 }
 
@@ -503,10 +592,13 @@ std::size_t FastOperator::fixed_bytes(std::size_t n, std::size_t clusters, int d
 
 std::size_t FastOperator::fixed_bytes(std::size_t n, std::size_t clusters, int degree, std::size_t rows) {
   const std::size_t T = static_cast<std::size_t>(num_taylor_terms(degree));
-  // Per cluster: frame, offset to the parent, moments per product; per element: its moments,
-  // rho, P, n_P; per row held: the near/far row starts.
-  return clusters * (sizeof(PlaneFrame) + 2 * sizeof(double) + T * sizeof(double)) +
-         n * (T * sizeof(double) + 7 * sizeof(double)) + rows * 2 * sizeof(std::int64_t);
+  // Per cluster: frame, offset to the parent, moments per product; per element: rho; per row
+  // held: the near/far row starts; the element moments by shape, two per root (one at level 0:
+  // n = n0), n0 = 4 n - 3 clusters since clusters = n0 (4^(L+1) - 1) / 3 and n = n0 4^L.
+  const std::size_t roots = 4 * n - 3 * clusters;
+  const std::size_t shapes = std::min(n, 2 * roots);
+  return clusters * (sizeof(PlaneFrame) + 2 * sizeof(double) + T * sizeof(double)) + n * sizeof(double) +
+         shapes * T * sizeof(double) + rows * 2 * sizeof(std::int64_t);
 }
 
 std::pair<int, Index> FastOperator::cluster_of_id(Index id) const {
@@ -519,8 +611,8 @@ std::pair<int, Index> FastOperator::cluster_of_id(Index id) const {
 // coefficients, computed by the kernels of the recomputing product (far_field_batch.hpp), so that
 // stored double and recomputed coefficients are the same numbers (their sums' order differs).
 far_field_batch::RowPoint FastOperator::far_row_point(Index i) const {
-  const Vec3 P = unit_scale_ * point_[static_cast<std::size_t>(i)];
-  const Vec3& nP = normal_[static_cast<std::size_t>(i)];
+  const Vec3 P = unit_scale_ * tree_->collocation_point(i);
+  const Vec3& nP = tree_->elements()[static_cast<std::size_t>(i)].normal;
   return {{P[0], P[1], P[2]}, {nP[0], nP[1], nP[2]}, rho_[static_cast<std::size_t>(i)] / pi};
 }
 
@@ -543,7 +635,7 @@ void FastOperator::compute_moments(const Eigen::VectorXd& v, std::vector<double>
 #pragma omp parallel for schedule(static)
   for (Index e = 0; e < n_; ++e) {
     const double ve = v[e];
-    const double* g = &element_moments_[static_cast<std::size_t>(e) * T];
+    const double* g = element_moments(e);
     double* m = &moments[(leaf0 + static_cast<std::size_t>(e)) * T];
     for (std::size_t t = 0; t < T; ++t) m[t] = ve * g[t];
   }
@@ -642,7 +734,7 @@ void FastOperator::add_local_expansions(Index i, const double* values, double* s
   const int L = tree_->finest_level();
   const int d = targets_->degree;
   const std::size_t table = static_cast<std::size_t>(num_local_points(d)) * C;
-  const Vec3 P = unit_scale_ * point_[static_cast<std::size_t>(i)];
+  const Vec3 P = unit_scale_ * tree_->collocation_point(i);
   const int l = targets_->finest_level;  // its expansion holds those of its ancestors (evaluate_local_expansions)
   const Index id = cluster_id(l, i >> (2 * (L - l)));
   const std::int64_t slot = local_slot_[static_cast<std::size_t>(id)];
@@ -816,14 +908,15 @@ std::vector<std::pair<std::string, Eigen::VectorXd>> FastOperator::self_check_ve
   if (n_ == 0) return out;
   const auto elements = tree_->elements();
   // Coordinates scaled to the bounding box of the collocation points: s in [0, 1]^3.
-  Vec3 lo = point_.front(), hi = point_.front();
-  for (const Vec3& P : point_) {
+  const std::span<const Vec3> points = tree_->collocation_points();
+  Vec3 lo = points.front(), hi = points.front();
+  for (const Vec3& P : points) {
     lo = lo.cwiseMin(P);
     hi = hi.cwiseMax(P);
   }
   Vec3 inv_extent;
   for (int a = 0; a < 3; ++a) inv_extent[a] = hi[a] > lo[a] ? 1.0 / (hi[a] - lo[a]) : 0.0;
-  const auto scaled = [&](Index j) -> Vec3 { return (point_[static_cast<std::size_t>(j)] - lo).cwiseProduct(inv_extent); };
+  const auto scaled = [&](Index j) -> Vec3 { return (points[static_cast<std::size_t>(j)] - lo).cwiseProduct(inv_extent); };
   const auto make = [&](const std::string& name, auto&& value) {
     Eigen::VectorXd v(n_);
     for (Index j = 0; j < n_; ++j) v[j] = value(j);
@@ -915,8 +1008,8 @@ void FastOperator::exact_rows(FastSelfCheckReference& reference) const {
       double* ex = &reference.exact[r * V];
       double* sc = &reference.scale[r * V];
       if (rho == 0) continue;
-      const Vec3& P = point_[static_cast<std::size_t>(i)];
-      const Vec3& nP = normal_[static_cast<std::size_t>(i)];
+      const Vec3& P = tree_->collocation_point(i);
+      const Vec3& nP = elements[static_cast<std::size_t>(i)].normal;
       const auto add = [&](Index j, double form_factor) {
         const double kij = rho * form_factor;
         const double* vj = &values[static_cast<std::size_t>(j) * 2 * V];
@@ -976,22 +1069,25 @@ FastSelfCheck FastOperator::self_check(const FastSelfCheckReference& reference) 
     if (v.second.size() != n_) throw std::invalid_argument("FastOperator::self_check: reference vector size differs from n");
   if (reference.exact.size() != S * V || reference.scale.size() != S * V)
     throw std::invalid_argument("FastOperator::self_check: reference rows and vectors do not match its values");
-  std::vector<std::vector<double>> moments(V), local_values(V);
   std::vector<Index> targets;  // the sampled rows' target ancestors: only their local expansions are needed
   for (const Index i : rows) append_target_ancestors(i, targets);
   std::sort(targets.begin(), targets.end());
   targets.erase(std::unique(targets.begin(), targets.end()), targets.end());
-  for (std::size_t k = 0; k < V; ++k) {
-    compute_moments(vectors[k].second, moments[k]);
-    if (targets_) evaluate_local_expansions(moments[k].data(), 1, targets, local_values[k]);
-  }
+  // One vector at a time through one array of cluster moments (48): the moments are the largest
+  // array of a product (T doubles per cluster, 4/3 n clusters), so holding all V at once would
+  // take V times a product's memory.
+  std::vector<double> moments, local_values;
   std::vector<double> fast(S * V, 0.0);
+  for (std::size_t k = 0; k < V; ++k) {
+    compute_moments(vectors[k].second, moments);
+    if (targets_) evaluate_local_expansions(moments.data(), 1, targets, local_values);
 #pragma omp parallel
-  {
-    std::vector<double> scratch(static_cast<std::size_t>(terms_));
+    {
+      std::vector<double> scratch(static_cast<std::size_t>(terms_));
 #pragma omp for schedule(dynamic, 1)
-    for (std::size_t r = 0; r < S; ++r)
-      for (std::size_t k = 0; k < V; ++k) fast[r * V + k] = apply_row(rows[r], vectors[k].second, moments[k], local_values[k], scratch.data());
+      for (std::size_t r = 0; r < S; ++r)
+        fast[r * V + k] = apply_row(rows[r], vectors[k].second, moments, local_values, scratch.data());
+    }
   }
   const auto& exact = reference.exact;
   const auto& scale = reference.scale;

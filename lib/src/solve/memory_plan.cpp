@@ -83,7 +83,7 @@ std::vector<LevelMemoryEstimate> estimate_levels_memory(const geometry::Triangle
       const long double clusters = n * 4 / 3;  // n0 (4^(L+1) - 1) / 3
       long double bytes = static_cast<long double>(
           FastOperator::fixed_bytes(static_cast<std::size_t>(n), static_cast<std::size_t>(clusters), op.degree));
-      if (level > coarse_level) {
+      if (level > coarse_level && !(options.target_clusters && op.local.enabled)) {
         auto it = std::find_if(far_per_row.begin(), far_per_row.end(), [&](const auto& p) { return p.first == op.eta; });
         if (it == far_per_row.end()) {
           if (!coarse) {

@@ -109,6 +109,7 @@ void RadiositySolver::choose_parameters_and_plan() {
   memory.collocation_vectors = options_.fold_reflectivity ? 3 : 4;
   memory.field_bytes_per_element = options_.result_bytes_per_element;
   memory.channels_together = options_.fold_reflectivity ? 1 : static_cast<int>(scene_.num_channels());
+  memory.target_clusters = info_.visibility == Visibility::unoccluded;
   SolverOptions planned_solver;
   planned_solver.kind = options_.solver.kind;
   info_.memory = estimate_level_memory(scene_.mesh(), info_.level, info_.parameters, planned_solver, rho_max, memory);

@@ -224,6 +224,10 @@ class FastOperator final : public RadiosityOperator {
   };
   static MemoryEstimate estimate_memory(const Collocation& collocation, double eta, int degree,
                                         const RowRange& rows = {});
+  /// The same for an operator of `options` (eta, M, rows held), with its target clusters
+  /// (options.local on a convex scene): their per-point coverings start below the targets, and
+  /// the targets' sources and values are counted.
+  static MemoryEstimate estimate_memory(const Collocation& collocation, const FastOptions& options);
   /// Bytes of the arrays whose size depends only on n, the number of clusters and M (frames,
   /// moments, row data, row starts): MemoryEstimate::bytes without the near/far lists. With
   /// `rows` rows held (the row starts); without it, all n.
@@ -245,17 +249,32 @@ class FastOperator final : public RadiosityOperator {
  private:
   struct RowBlock;  // the coverings of a block of rows, while they are built
 
+  /// The target clusters' finest level lt (-1: none), degree d and eta_t (target_plan).
+  struct TargetPlan {
+    int level = -1;
+    int degree = 0;
+    double eta = 0;
+  };
+  static TargetPlan target_plan(const FastOptions& options, int finest_level);
+  static double far_field_unit(const geometry::ClusterTree& tree);
+  static std::vector<geometry::Index> level_offsets(const geometry::ClusterTree& tree);
+  static std::shared_ptr<TargetClusters> make_target_clusters(const geometry::ClusterTree& tree, const FastOptions& options);
+  static MemoryEstimate estimate_memory(const Collocation& collocation, double eta, int degree, const RowRange& rows,
+                                        const TargetClusters* targets);
+
   // Setup stages, in order.
   void check_options();
-  void refuse_beyond_memory(const Collocation& collocation) const;
+  void refuse_beyond_memory(const Collocation& collocation, const TargetClusters* targets) const;
   void report_stage(const std::string& what) const;
   std::string rows_note() const;
   void setup_cluster_frames();
   void setup_element_data(const Collocation& collocation);
+  /// The element moments (48) of element e (its shape's, shape_moments_).
+  const double* element_moments(geometry::Index e) const;
   std::vector<RowBlock> cover_rows();
   void store_coverings(std::vector<RowBlock>& blocks);
   void setup_far_coefficients();
-  void setup_target_clusters();
+  void setup_target_clusters(std::shared_ptr<TargetClusters> targets);
   bool row_computed(geometry::Index i) const;
   /// The target clusters of levels 0..target_level containing row i, coarse to fine, that have
   /// a local expansion (a slot), appended to `out`.
@@ -296,12 +315,13 @@ class FastOperator final : public RadiosityOperator {
   int terms_ = 0;                                 // (M+1)(M+2)/2
   std::vector<geometry::Index> level_offset_;     // first global id of each level
   // The per-cluster and per-row arrays are sized once and filled by parallel loops (first touch).
-  UninitializedVector<double> rho_;               // rho(P_i), all n rows
-  UninitializedVector<Vec3> point_, normal_;      // P_i, n_P, all n rows
+  UninitializedVector<double> rho_;               // rho(P_i), all n rows (P_i and n_P are the tree's)
   double unit_scale_ = 1;                         // far field in units of 2^k ~ diameter (exact scaling)
   UninitializedVector<PlaneFrame> frame_;         // per cluster: origin A(tau) (scaled), axes of its plane
   UninitializedVector<std::array<double, 2>> to_parent_;  // per cluster: its A in parent's frame (roots: 0)
-  LargeBuffer element_moments_;                  // per element: Int_Delta x^p y^q dS about A(Delta)
+  // Element moments Int_Delta x^p y^q dS about A(Delta) by shape: per root, the even and the odd
+  // elements' (setup_element_data), 2 n0 T values.
+  std::vector<double> shape_moments_;
   // Near field (CSR over the rows held, row i at i - begin): element index and rho_i/pi Int G.
   // CSR rather than Eigen::SparseMatrix<double, RowMajor, StorageIndex>, measured on the cube,
   // eta 0.2 (near pairs 5.6 a row at n = 49152, 2.8 at 196608, 1.4 at 786432): a 64-bit
