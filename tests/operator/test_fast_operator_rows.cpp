@@ -250,4 +250,32 @@ TEST(FastOperatorRows, MemoryEstimatesScaleWithTheRows) {
   EXPECT_NEAR(static_cast<double>(all.far_pairs), static_cast<double>(far_sum), 0.05 * static_cast<double>(far_sum));
 }
 
+// With target clusters (on by default, on a convex scene) the per-point coverings start below the
+// targets: the estimate for a range of at most 256 rows (every row sampled) finds the far pairs
+// that setup finds, and its bytes cover what the operator holds (the targets' values counted for
+// every target, the coefficients not stored here); on the whole surface it is far below the
+// estimate of the per-point coverings from the roots.
+TEST(FastOperatorRows, MemoryEstimateCountsTheCoveringsBelowTheTargets) {
+  const Scene scene = make_paper_cube_scene();
+  const Collocation col(scene, 5);  // n = 12288: targets of levels 0..2
+  FastOptions o;
+  o.eta = 0.5;
+  o.degree = 6;
+  o.far_storage_limit = 1;  // coefficients recomputed: bytes() holds no coefficients
+  for (const RowRange r : {RowRange{0, 256}, RowRange{6000, 6200}, RowRange{12200, 12288}}) {
+    const FastOperator part(col, with_rows(o, r.begin, r.end));
+    ASSERT_GE(part.statistics().target_level, 0);
+    const FastOperator::MemoryEstimate e = FastOperator::estimate_memory(col, with_rows(o, r.begin, r.end));
+    EXPECT_NEAR(static_cast<double>(e.far_pairs), static_cast<double>(part.statistics().far_pairs), 1.0) << r.begin;
+    EXPECT_GE(e.bytes, part.bytes()) << r.begin;
+    EXPECT_LE(static_cast<double>(e.bytes), 1.25 * static_cast<double>(part.bytes())) << r.begin;
+  }
+  const FastOperator::MemoryEstimate with_targets = FastOperator::estimate_memory(col, o);
+  const FastOperator::MemoryEstimate from_roots = FastOperator::estimate_memory(col, o.eta, o.degree);
+  EXPECT_LT(static_cast<double>(with_targets.far_pairs), 0.5 * static_cast<double>(from_roots.far_pairs));
+  FastOptions paper = o;
+  paper.local.enabled = false;  // the paper's per-point coverings: the estimate from the roots
+  EXPECT_EQ(FastOperator::estimate_memory(col, paper).far_pairs, from_roots.far_pairs);
+}
+
 }  // namespace

@@ -253,13 +253,17 @@ void FastOperator::setup_element_data(const Collocation& collocation) {
 }
 
 // The moments of element e's shape (setup_element_data): those of its root, even or odd.
-const double* FastOperator::element_moments(Index e) const {
+std::span<const double> FastOperator::element_moments(Index e) const {
+  if (e < 0 || e >= n_)
+    throw std::out_of_range("FastOperator::element_moments: element " + std::to_string(e) + " is not in [0, " +
+                            std::to_string(n_) + ")");
+  const std::size_t T = static_cast<std::size_t>(terms_);
   const int L = tree_->finest_level();
-  if (L == 0) return &shape_moments_[static_cast<std::size_t>(e) * static_cast<std::size_t>(terms_)];
+  if (L == 0) return {&shape_moments_[static_cast<std::size_t>(e) * T], T};
   const std::uint64_t path = static_cast<std::uint64_t>(e) & ((std::uint64_t{1} << (2 * L)) - 1);  // base-4 digits below the root
   const std::uint64_t threes = path & (path >> 1) & 0x5555555555555555ULL;  // digit 3: both bits set
   const std::size_t shape = 2 * static_cast<std::size_t>(e >> (2 * L)) + static_cast<std::size_t>(std::popcount(threes) & 1);
-  return &shape_moments_[shape * static_cast<std::size_t>(terms_)];
+  return {&shape_moments_[shape * T], T};
 }
 
 // The levels, degree and eta_t of the target clusters of an operator of `options` on a tree of
@@ -635,7 +639,7 @@ void FastOperator::compute_moments(const Eigen::VectorXd& v, std::vector<double>
 #pragma omp parallel for schedule(static)
   for (Index e = 0; e < n_; ++e) {
     const double ve = v[e];
-    const double* g = element_moments(e);
+    const double* g = element_moments(e).data();
     double* m = &moments[(leaf0 + static_cast<std::size_t>(e)) * T];
     for (std::size_t t = 0; t < T; ++t) m[t] = ve * g[t];
   }

@@ -25,6 +25,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -242,6 +243,14 @@ class FastOperator final : public RadiosityOperator {
   /// otherwise).
   std::vector<geometry::Index> far_clusters(geometry::Index i) const;
   std::vector<geometry::Index> near_elements(geometry::Index i) const;
+  /// The moments (48) Int_Delta x^p y^q dS of element e about A(Delta), in the axes of its
+  /// plane's frame and the far field's length unit (far_field_unit()): num_taylor_terms(M) values in
+  /// graded order. Every element of a root triangle is congruent to it (setup_element_data), so
+  /// the operator holds two sets per root, not one per element.
+  std::span<const double> element_moments(geometry::Index e) const;
+  /// The far field's length unit: the power of two 2^-ilogb(diameter) (lengths are multiplied by it).
+  static double far_field_unit(const geometry::ClusterTree& tree);
+
   /// Global id of cluster k of level l and its inverse.
   geometry::Index cluster_id(int level, geometry::Index k) const { return level_offset_[static_cast<std::size_t>(level)] + k; }
   std::pair<int, geometry::Index> cluster_of_id(geometry::Index id) const;
@@ -256,7 +265,6 @@ class FastOperator final : public RadiosityOperator {
     double eta = 0;
   };
   static TargetPlan target_plan(const FastOptions& options, int finest_level);
-  static double far_field_unit(const geometry::ClusterTree& tree);
   static std::vector<geometry::Index> level_offsets(const geometry::ClusterTree& tree);
   static std::shared_ptr<TargetClusters> make_target_clusters(const geometry::ClusterTree& tree, const FastOptions& options);
   static MemoryEstimate estimate_memory(const Collocation& collocation, double eta, int degree, const RowRange& rows,
@@ -269,8 +277,6 @@ class FastOperator final : public RadiosityOperator {
   std::string rows_note() const;
   void setup_cluster_frames();
   void setup_element_data(const Collocation& collocation);
-  /// The element moments (48) of element e (its shape's, shape_moments_).
-  const double* element_moments(geometry::Index e) const;
   std::vector<RowBlock> cover_rows();
   void store_coverings(std::vector<RowBlock>& blocks);
   void setup_far_coefficients();
