@@ -234,6 +234,7 @@ void FastOperator::setup_element_data(const Collocation& collocation) {
   const std::size_t T = static_cast<std::size_t>(terms_);
   const Index n0 = tree.num_roots();
   shape_moments_.resize(static_cast<std::size_t>(n0) * (L == 0 ? 1 : 2) * T);  // level 0: every element is even
+#pragma omp parallel for schedule(static)
   for (Index r = 0; r < n0; ++r) {
     const Cluster& root = tree.cluster(0, r);
     double* even = &shape_moments_[static_cast<std::size_t>(L == 0 ? r : 2 * r) * T];
@@ -329,8 +330,13 @@ void FastOperator::setup_target_clusters(std::shared_ptr<TargetClusters> targets
   // Targets containing a computed row: marked on level lt, then up the tree.
   const Index num_targets = level_offset_[static_cast<std::size_t>(lt) + 1];
   std::vector<char> has_row(static_cast<std::size_t>(num_targets), 0);
-  for (Index i = row_begin_; i < row_end_; ++i)
-    if (row_computed(i)) has_row[static_cast<std::size_t>(cluster_id(lt, i >> (2 * (L - lt))))] = 1;
+  const Index first_target = row_begin_ >> (2 * (L - lt)), end_target = ((row_end_ - 1) >> (2 * (L - lt))) + 1;
+#pragma omp parallel for schedule(static)
+  for (Index k = first_target; k < std::max(first_target, end_target); ++k) {  // the targets of level lt: their rows
+    const Index first = std::max(row_begin_, tree.first_element(lt, k)), end = std::min(row_end_, tree.end_element(lt, k));
+    for (Index i = first; i < end && !has_row[static_cast<std::size_t>(cluster_id(lt, k))]; ++i)
+      if (row_computed(i)) has_row[static_cast<std::size_t>(cluster_id(lt, k))] = 1;
+  }
   for (int l = lt - 1; l >= 0; --l)
     for (Index k = 0; k < tree.level_size(l); ++k)
       for (Index c = 0; c < 4; ++c)
@@ -459,14 +465,28 @@ std::vector<FastOperator::RowBlock> FastOperator::cover_rows() {
 void FastOperator::store_coverings(std::vector<RowBlock>& blocks) {
   const std::size_t rows = static_cast<std::size_t>(row_end_ - row_begin_);
   const Index num_blocks = static_cast<Index>(blocks.size());
-  near_start_.assign(rows + 1, 0);
-  far_start_.assign(rows + 1, 0);
+  // Row starts: each block's first entries from the sums over the blocks before it (a short
+  // serial pass over the blocks), then every block's rows in parallel (first touch included).
+  std::vector<std::int64_t> near_first(static_cast<std::size_t>(num_blocks) + 1, 0), far_first(near_first);
   for (Index b = 0; b < num_blocks; ++b) {
     const RowBlock& blk = blocks[static_cast<std::size_t>(b)];
+    near_first[static_cast<std::size_t>(b) + 1] = near_first[static_cast<std::size_t>(b)] + static_cast<std::int64_t>(blk.near_col.size());
+    far_first[static_cast<std::size_t>(b) + 1] = far_first[static_cast<std::size_t>(b)] + static_cast<std::int64_t>(blk.far_cluster.size());
+  }
+  near_start_.resize(rows + 1);
+  far_start_.resize(rows + 1);
+  near_start_[rows] = near_first.back();
+  far_start_[rows] = far_first.back();
+#pragma omp parallel for schedule(static)
+  for (Index b = 0; b < num_blocks; ++b) {
+    const RowBlock& blk = blocks[static_cast<std::size_t>(b)];
+    std::int64_t near = near_first[static_cast<std::size_t>(b)], far = far_first[static_cast<std::size_t>(b)];
     for (std::size_t r = 0; r < blk.near_count.size(); ++r) {
       const std::size_t i = static_cast<std::size_t>(b * kRowBlock) + r;
-      near_start_[i + 1] = near_start_[i] + blk.near_count[r];
-      far_start_[i + 1] = far_start_[i] + blk.far_count[r];
+      near_start_[i] = near;
+      far_start_[i] = far;
+      near += blk.near_count[r];
+      far += blk.far_count[r];
     }
   }
   stats_.near_pairs = static_cast<std::size_t>(near_start_.back());

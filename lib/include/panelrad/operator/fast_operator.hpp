@@ -337,11 +337,11 @@ class FastOperator final : public RadiosityOperator {
   // 0.063 s against 0.061 s on one thread, 0.033 s against 0.036 s on two (49152: 0.023 / 0.021 s,
   // 0.012 / 0.013 s). Here the near sum is fused with the far sum of the same row; it is < 1% of
   // a product (0.44 s at n = 196608, two threads).
-  std::vector<std::int64_t> near_start_;
+  UninitializedVector<std::int64_t> near_start_;
   UninitializedVector<geometry::Index> near_col_;
   UninitializedVector<double> near_val_;
   // Far field (CSR over the rows held): cluster id and, when stored, the rho-scaled Taylor coefficients.
-  std::vector<std::int64_t> far_start_;
+  UninitializedVector<std::int64_t> far_start_;
   UninitializedVector<geometry::Index> far_cluster_;
   LargeBuffer far_coef_;                         // uninitialized, huge pages, filled in parallel
   LargeArray<float> far_coef_single_;            // the same, single_precision_coefficients
