@@ -1,4 +1,5 @@
 #include <panelrad/distributed/row_partition.hpp>
+#include <panelrad/operator/row_costs.hpp>
 
 #include <algorithm>
 #include <stdexcept>
@@ -41,7 +42,8 @@ RowPartition partition_rows(geometry::Index n, const std::vector<double>& block_
   return p;
 }
 
-std::vector<double> fast_product_block_costs(const Collocation& collocation, double eta, int degree) {
+std::vector<double> fast_product_block_costs(const Collocation& collocation, double eta, int degree,
+                                             const geometry::Occluders* occluders, const NearFieldOptions& near) {
   const geometry::Index n = collocation.size();
   const std::size_t blocks = static_cast<std::size_t>((n + kRowBlock - 1) / kRowBlock);
   const std::size_t runs = std::min<std::size_t>(blocks, 256);
@@ -51,8 +53,14 @@ std::vector<double> fast_product_block_costs(const Collocation& collocation, dou
     const std::size_t first = blocks * k / runs, last = blocks * (k + 1) / runs;
     const RowRange rows{static_cast<geometry::Index>(first) * kRowBlock,
                         std::min(n, static_cast<geometry::Index>(last) * kRowBlock)};
-    const FastOperator::MemoryEstimate e = FastOperator::estimate_memory(collocation, eta, degree, rows);
-    const double work = static_cast<double>(e.far_pairs) * terms + static_cast<double>(e.near_pairs);
+    double work = 0;
+    if (occluders) {
+      work = occluded_row_work(collocation, *occluders, eta, degree, near, rows, 16) *
+             static_cast<double>(rows.end - rows.begin);
+    } else {
+      const FastOperator::MemoryEstimate e = FastOperator::estimate_memory(collocation, eta, degree, rows);
+      work = static_cast<double>(e.far_pairs) * terms + static_cast<double>(e.near_pairs);
+    }
     for (std::size_t b = first; b < last; ++b) cost[b] = work / static_cast<double>(last - first);
   }
   return cost;

@@ -301,8 +301,10 @@ void RadiositySolver::build_rows_of_this_process(const Collocation& rows, Operat
   }
   // The rows cut by the fast product's measured cost per block; the dense matrix's rows cost alike.
   const bool fast = op.method == OperatorMethod::fast;
+  const std::shared_ptr<const geometry::Occluders> occluders =
+      fast && info_.visibility == Visibility::occluded ? scene_occluders(rows.tree()) : nullptr;
   const std::vector<double> cost =
-      fast ? fast_product_block_costs(rows, op.eta, op.degree)
+      fast ? fast_product_block_costs(rows, op.eta, op.degree, occluders.get(), op.near)
            : std::vector<double>(static_cast<std::size_t>((info_.n + kRowBlock - 1) / kRowBlock), 1.0);
   info_.partition = partition_rows(info_.n, cost, comm.size());
   const RowRange mine = info_.partition.rows(comm.rank());

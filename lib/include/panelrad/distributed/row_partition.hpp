@@ -25,10 +25,15 @@ struct RowPartition {
 /// empty (more parts than blocks).
 RowPartition partition_rows(geometry::Index n, const std::vector<double>& block_cost, int parts);
 
-/// The cost of the fast product's rows per block of kRowBlock rows: far pairs x Taylor terms +
-/// near pairs (the work of a row in a product, (43)-(48)), from the coverings (42) of sampled rows
-/// (FastOperator::estimate_memory), measured on up to 256 runs of consecutive blocks and spread
-/// evenly over the blocks of a run. Deterministic.
-std::vector<double> fast_product_block_costs(const Collocation& collocation, double eta, int degree);
+/// The cost of the fast operator's rows per block of kRowBlock rows: far pairs x Taylor terms +
+/// near pairs (the work of a row in a product, (43)-(48)), from the coverings (42) of sampled rows,
+/// measured on up to 256 runs of consecutive blocks and spread evenly over the blocks of a run.
+/// Without occluders (V = 1): the plain coverings of up to 256 rows a run
+/// (FastOperator::estimate_memory). With them: the coverings with V of up to 16 rows a run, their
+/// classified pairs counted too (occluded_row_work: the visibility work of setup, which differs
+/// most from row to row). Deterministic.
+std::vector<double> fast_product_block_costs(const Collocation& collocation, double eta, int degree,
+                                             const geometry::Occluders* occluders = nullptr,
+                                             const NearFieldOptions& near = {});
 
 }  // namespace panelrad
