@@ -45,19 +45,24 @@ inline void expect_same_bits(const SolveBits& single, const SolveBits& shared, c
   EXPECT_EQ(0, std::memcmp(&single.self_check, &shared.self_check, sizeof(double))) << what;
 }
 
-/// The paper's cube (31) at level 3, rho folded into K_n, the fast operator from eta 0.4, M 4,
-/// tightened by its self-check; E manufactured from u = |x|^2.
-inline SolveBits paper_cube_solve(SolverKind kind, const Communicator* communicator) {
-  const Scene scene = make_paper_cube_scene();
+/// Level 3, the fast operator from eta 0.4, M 4, tightened by its self-check, solver `kind`.
+inline RadiositySolverOptions fast_level3(SolverKind kind, const Communicator* communicator) {
   RadiositySolverOptions o;
   o.level = 3;
   o.method = OperatorMethod::fast;
   o.manual.eta = 0.4;
   o.manual.degree = 4;
   o.tighten_on_failed_check = true;
-  o.fold_reflectivity = true;
   o.solver.kind = kind;
   o.communicator = communicator;
+  return o;
+}
+
+/// The paper's cube (31) at level 3, rho folded into K_n; E manufactured from u = |x|^2.
+inline SolveBits paper_cube_solve(SolverKind kind, const Communicator* communicator) {
+  const Scene scene = make_paper_cube_scene();
+  RadiositySolverOptions o = fast_level3(kind, communicator);
+  o.fold_reflectivity = true;
   const RadiositySolver solver(scene, o);
   ChannelSolve r = solver.solve(0);
   EXPECT_TRUE(r.converged()) << r.message;
@@ -69,7 +74,7 @@ inline SolveBits paper_cube_solve(SolverKind kind, const Communicator* communica
 }
 
 /// The room [0, 1]^3 with a box inside (room_with_box), three channels with their own rho and E
-/// per facet, solved with V (occluded); the fast operator from eta 0.4, M 4, chosen by probes.
+/// per facet, solved with V (occluded); the parameters chosen by probes.
 inline SolveBits room_scene_solve(SolverKind kind, const Communicator* communicator) {
   geometry::TriangleMesh mesh = room_with_box();
   const geometry::SceneValidationReport report = geometry::validate_scene(mesh);
@@ -83,15 +88,7 @@ inline SolveBits room_scene_solve(SolverKind kind, const Communicator* communica
     scene.set_reflectivity(rho, c);
     scene.set_emissivity(E, c);
   }
-  RadiositySolverOptions o;
-  o.level = 3;
-  o.method = OperatorMethod::fast;
-  o.manual.eta = 0.4;
-  o.manual.degree = 4;
-  o.tighten_on_failed_check = true;
-  o.solver.kind = kind;
-  o.communicator = communicator;
-  const SceneSolution s = solve_scene(scene, o);
+  const SceneSolution s = solve_scene(scene, fast_level3(kind, communicator));
   SolveBits bits;
   for (const ChannelSolution& ch : s.channels) {
     EXPECT_EQ(ch.status, SolveStatus::converged) << ch.message;

@@ -249,19 +249,17 @@ void RadiositySolver::build_operator() {
     op_ = make(rows, op);  // its self-check is the probe's (the same rows, computed alike)
   } else {
     op_ = make(rows, op);
-    if (const auto* fast = dynamic_cast<const FastOperator*>(op_.get())) {
+    if (dynamic_cast<const FastOperator*>(op_.get())) {
       say("fast operator: checking the product on sampled exact rows");
-      info_.self_check = fast->self_check(kSelfCheckSamples);
-      while (tighten && !(info_.self_check->relative_error <= info_.self_check_threshold)) {
-        const OperatorOptions stricter = tighten_parameters(op);
-        if (stricter == op) break;  // nothing stricter
-        say(fmt("self-check %.2e above %.2e: tightening", info_.self_check->relative_error, info_.self_check_threshold));
-        op = stricter;
-        ++info_.tightened;
-        op_.reset();  // free the looser operator before building the stricter one
-        op_ = make(rows, op);
-        info_.self_check = dynamic_cast<const FastOperator&>(*op_).self_check(kSelfCheckSamples);
-      }
+      bool built = true;  // op_ is the operator of op
+      check_and_tighten(op, tighten, [&](const OperatorOptions& o) {
+        if (!built) {
+          op_.reset();  // free the looser operator before building the stricter one
+          op_ = make(rows, o);
+        }
+        built = false;
+        return dynamic_cast<const FastOperator&>(*op_).self_check(kSelfCheckSamples);
+      });
     }
   }
   if (info_.self_check && !(info_.self_check->relative_error <= info_.self_check_threshold))
@@ -275,6 +273,21 @@ void RadiositySolver::build_operator() {
       format_bytes(static_cast<double>(info_.operator_bytes)));
 }
 
+// Step 6's loop: the self-check of the operator of `op` (check(op): that operator's, or its
+// probe's), and while it fails and `tighten`, the next tighten_parameters and its check.
+void RadiositySolver::check_and_tighten(OperatorOptions& op, bool tighten,
+                                        const std::function<FastSelfCheck(const OperatorOptions&)>& check) {
+  info_.self_check = check(op);
+  while (tighten && !(info_.self_check->relative_error <= info_.self_check_threshold)) {
+    const OperatorOptions stricter = tighten_parameters(op);
+    if (stricter == op) break;  // nothing stricter
+    say(fmt("self-check %.2e above %.2e: tightening", info_.self_check->relative_error, info_.self_check_threshold));
+    op = stricter;
+    ++info_.tightened;
+    info_.self_check = check(op);
+  }
+}
+
 // Steps 5-6 on one of several processes: the parameters chosen as build_operator chooses them on
 // one process, each self-check on a probe of the sampled rows (the same check, bit for bit, at the
 // cost of those rows); then the operator of this process's rows.
@@ -284,20 +297,11 @@ void RadiositySolver::build_rows_of_this_process(const Collocation& rows, Operat
     say("fast operator: probing the setting on the self-check's sampled rows");
     choose_by_probes(rows, op);
   } else if (op.method == OperatorMethod::fast) {
-    const auto probe_check = [&](const OperatorOptions& o) {
+    say("fast operator: checking the product on sampled exact rows (a probe of those rows)");
+    check_and_tighten(op, tighten, [&](const OperatorOptions& o) {
       const std::unique_ptr<RadiosityOperator> probe = make(rows, o, {}, kSelfCheckSamples);
       return dynamic_cast<const FastOperator&>(*probe).self_check(kSelfCheckSamples);
-    };
-    say("fast operator: checking the product on sampled exact rows (a probe of those rows)");
-    info_.self_check = probe_check(op);
-    while (tighten && !(info_.self_check->relative_error <= info_.self_check_threshold)) {
-      const OperatorOptions stricter = tighten_parameters(op);
-      if (stricter == op) break;  // nothing stricter
-      say(fmt("self-check %.2e above %.2e: tightening", info_.self_check->relative_error, info_.self_check_threshold));
-      op = stricter;
-      ++info_.tightened;
-      info_.self_check = probe_check(op);
-    }
+    });
   }
   // The rows cut by the fast product's measured cost per block; the dense matrix's rows cost alike.
   const bool fast = op.method == OperatorMethod::fast;

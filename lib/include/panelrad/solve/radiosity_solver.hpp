@@ -194,6 +194,8 @@ class RadiositySolver {
   std::unique_ptr<RadiosityOperator> make(const Collocation& rows, const OperatorOptions& op,
                                           const RowRange& held = {}, int probe_samples = 0);
   void build_rows_of_this_process(const Collocation& rows, OperatorOptions& op, bool tighten);
+  void check_and_tighten(OperatorOptions& op, bool tighten,
+                         const std::function<FastSelfCheck(const OperatorOptions&)>& check);
   /// This process's rows of a whole vector, and the whole vector from every process's rows.
   Eigen::VectorXd held(const Eigen::VectorXd& whole) const;
   Eigen::VectorXd whole(const Eigen::VectorXd& held) const;
