@@ -2,6 +2,7 @@
 #include "commands.hpp"
 #include "hints.hpp"
 #include "options.hpp"
+#include "processes.hpp"
 
 #include <panelrad/operator/auto_parameters.hpp>
 #include <panelrad/paper/cube_example.hpp>
@@ -104,7 +105,8 @@ void check_cube_options(const CLI::App& app, CubeCommandLine& line) {
 }
 
 int run_cube(const CubeCommandLine& line) {
-  const CubeRunOptions& o = line.o;
+  CubeRunOptions o = line.o;
+  o.communicator = shared_solve();
   const std::string& csv = line.csv;
   const std::string& accuracy = line.accuracy;
   const std::string& manual_opt = line.manual_opt;
@@ -112,7 +114,10 @@ int run_cube(const CubeCommandLine& line) {
   set_threads(threads);
   // SIGINT/SIGTERM/SIGHUP remove the CSV's temporary and end the run (status 128 + signal).
   install_output_signal_handlers();
-  if (!csv.empty()) {  // fail before a long run, not after it; an existing CSV.probe is not touched
+  // Several processes (mpirun): each solves its share of the rows; rank 0 alone writes (main
+  // sends the other ranks' standard output to /dev/null).
+  const bool writer = writes_outputs();
+  if (!csv.empty() && writer) {  // fail before a long run, not after it; an existing CSV.probe is not touched
     try {
       check_output_path(csv);
     } catch (const std::exception& e) {
@@ -166,7 +171,7 @@ int run_cube(const CubeCommandLine& line) {
   }
   if (!rows.empty()) std::cout << "solver: " << rows.back().solver << "\n";
   print_cube_growth(std::cout, rows);
-  if (!csv.empty()) {
+  if (!csv.empty() && writer) {
     write_cube_csv(rows, csv);
     std::cout << "wrote " << csv << "\n";
   }

@@ -1,13 +1,23 @@
 // panelrad command-line program: dispatches sub-commands (CLI11 sub-commands of one App).
+// Built with PANELRAD_MPI, it runs as one rank of `mpirun -np K panelrad ...`: the ranks share
+// each solve's rows (processes.hpp), rank 0 alone writes to standard output, and a failure on any
+// rank ends every rank (MPI_Abort) with its message, so that none waits for it forever.
 #include "commands.hpp"
 #include "hints.hpp"
 #include "options.hpp"
+#include "processes.hpp"
 
 #include <panelrad/support/version.hpp>
+#if PANELRAD_MPI
+#include <panelrad/mpi/mpi_communicator.hpp>
+#endif
 
 #include <CLI/CLI.hpp>
 
+#include <cstdio>
 #include <iostream>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,6 +58,30 @@ std::string describe_extras(const CLI::App& command, const std::vector<std::stri
 
 int main(int argc, char** argv) {
   using panelrad::cli::Command;
+#if PANELRAD_MPI
+  // Under mpirun: one rank of the run. Started otherwise: alone, as the default build's program.
+  std::optional<panelrad::MpiSession> mpi;
+  std::unique_ptr<const panelrad::MpiCommunicator> world;
+  if (panelrad::started_by_mpi_launcher()) {
+    mpi.emplace(argc, argv);
+    world = std::make_unique<const panelrad::MpiCommunicator>();
+    panelrad::cli::set_shared_solve(world.get());
+  }
+  // Rank 0 alone writes the tables, summaries and usage texts; the others' standard output goes
+  // nowhere (their standard error stays: a rank's failure is said by that rank).
+  if (!panelrad::cli::writes_outputs() && !std::freopen("/dev/null", "w", stdout)) return 1;
+  // A failed command on several ranks: its message, then every rank ends (exit status `code`).
+  const auto fail = [&world](const std::string& message, int code) {
+    if (world && world->size() > 1) world->abort(message, code);
+    std::cerr << message;
+    return code;
+  };
+#else
+  const auto fail = [](const std::string& message, int code) {
+    std::cerr << message;
+    return code;
+  };
+#endif
   CLI::App panelrad{"", "panelrad"};
   panelrad::cli::set_usage(panelrad, kUsage);
   // One command; a further command name is then an argument of the first (an error).
@@ -101,15 +135,16 @@ int main(int argc, char** argv) {
     if (!c.app->parsed()) continue;
     const std::string name = c.app->get_name();
     try {
-      return c.run();
+      const int status = c.run();
+      if (status != 0) return fail("", status);  // the command said why
+      return 0;
     } catch (const panelrad::cli::UsageError& e) {
-      std::cerr << "panelrad " << name << ": " << e.what() << "\n" << c.app->help();
-      return 2;
+      return fail("panelrad " + name + ": " + e.what() + "\n" + c.app->help(), 2);
     } catch (const std::exception& e) {
-      std::cerr << "panelrad " << name << ": error: " << e.what() << "\n";
+      std::string message = "panelrad " + name + ": error: " + e.what() + "\n";
       if (const std::string hint = panelrad::cli::hint_for(e); !hint.empty())
-        std::cerr << "panelrad " << name << ": " << hint << "\n";
-      return 1;
+        message += "panelrad " + name + ": " + hint + "\n";
+      return fail(message, 1);
     }
   }
   std::cerr << kUsage;  // no command

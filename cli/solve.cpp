@@ -2,6 +2,7 @@
 // with one operator, written as CSV, PLY, VTK and a PNG picture.
 #include "commands.hpp"
 #include "options.hpp"
+#include "processes.hpp"
 
 #include <panelrad/operator/auto_parameters.hpp>
 #include <panelrad/support/resources.hpp>
@@ -168,12 +169,13 @@ void check_solve_options(const CLI::App& app, SolveCommandLine& line) {
 }
 
 /// The scene, with what loading did on stderr (unless quiet), and a note when --max-elements is
-/// below n0 (said even when quiet: the run then does not do what was asked).
-Scene load_scene(const SolveCommandLine& line, bool max_given) {
+/// below n0 (said even when quiet: the run then does not do what was asked). Only the process
+/// that writes the outputs says anything.
+Scene load_scene(const SolveCommandLine& line, bool max_given, bool writer) {
   const Scene scene = load_channel_scene(line.scene_path, line.materials);  // errors: exit 1 (main)
-  if (!line.quiet)
+  if (!line.quiet && writer)
     for (const std::string& note : scene.notes()) std::cerr << "panelrad solve: note: " << note << "\n";
-  if (line.o.level < 0 && static_cast<long long>(scene.mesh().triangles.size()) > line.o.max_elements)
+  if (writer && line.o.level < 0 && static_cast<long long>(scene.mesh().triangles.size()) > line.o.max_elements)
     std::cerr << "panelrad solve: note: " << (max_given ? "--max-elements " : "the default --max-elements ")
               << line.o.max_elements << " is below the scene's " << scene.mesh().triangles.size()
               << " triangles (n0): solving level 0, n = " << scene.mesh().triangles.size() << "\n";
@@ -266,12 +268,17 @@ int run_solve(const CLI::App& app, const SolveCommandLine& command_line) {
   // SIGINT/SIGTERM/SIGHUP remove the outputs' temporaries and end the run (status 128 + signal).
   install_output_signal_handlers();
   set_threads(command_line.threads);
-  if (!command_line.quiet) o.progress = [](const std::string& line) { std::cerr << "panelrad solve: " << line << "\n"; };
+  // Several processes (mpirun): each solves its share of the rows; rank 0 alone says and writes.
+  o.communicator = shared_solve();
+  const bool writer = writes_outputs();
+  if (!command_line.quiet && writer)
+    o.progress = [](const std::string& line) { std::cerr << "panelrad solve: " << line << "\n"; };
 
-  const Scene scene = load_scene(command_line, app.count("--max-elements") > 0);
-  check_outputs(scene, command_line.scene_path, outputs);
+  const Scene scene = load_scene(command_line, app.count("--max-elements") > 0, writer);
+  if (writer) check_outputs(scene, command_line.scene_path, outputs);
   const SceneSolution s = solve_scene(scene, o);
   require_converged(s);  // a channel out of iterations: exit 1 with the SolverError's message, no outputs
+  if (!writer) return 0;
   write_outputs(s, outputs, command_line.view, command_line.up);
 
   print_summary(scene, command_line.scene_path, s);

@@ -14,6 +14,7 @@ packages=(
   libpng-dev                             # PNG picture of a solved scene
   libcli11-dev                           # command-line option parsing (cli/)
   gnuplot-nox                            # bench/plot_pareto.gp (error-time plot of bench/sweep)
+  libopenmpi-dev openmpi-bin             # the MPI build (-DPANELRAD_MPI=ON) and its tests
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -9,6 +9,17 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j "$(nproc)"
 ctest --test-dir build --output-on-failure -j "$(nproc)"
 
+# The MPI tests (label mpi): the same Release build with -DPANELRAD_MPI=ON, which adds the MPI
+# communicator (panelrad_mpi), makes the program an MPI program and adds the tests run under
+# mpirun with 1, 2 and 3 ranks; the library itself is the same, so only the program and those
+# tests are built again. One at a time (each runs up to 3 ranks on this machine's cores). Then
+# build/ is made MPI-free again, as run-main.sh expects it.
+cmake -S . -B build -DPANELRAD_MPI=ON
+cmake --build build -j "$(nproc)" --target panelrad_cli test_mpi_solves
+ctest --test-dir build --output-on-failure -L mpi
+cmake -S . -B build -DPANELRAD_MPI=OFF
+cmake --build build -j "$(nproc)" --target panelrad_cli
+
 # Second build with -fsanitize=address,undefined (PANELRAD_SANITIZE): -O1 with debug information and
 # with assertions (no NDEBUG: Eigen's and CGAL's own checks are on too). Examples and benchmarks are
 # not needed by the tests and are left out. Excluded from this run:

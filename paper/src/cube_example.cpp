@@ -41,6 +41,7 @@ RadiositySolverOptions level_options(const CubeRunOptions& options, int level) {
   o.tighten_on_failed_check = options.tighten_on_failed_check;
   o.solver = options.solver;  // tolerance <= 0: discretization_tolerance, per level
   o.fold_reflectivity = true;  // K_n with rho (31) in its rows, as in the paper's tables
+  o.communicator = options.communicator;
   return o;
 }
 
@@ -61,13 +62,15 @@ CubeRow cube_row(const RadiositySolver& solver, const ChannelSolve& result) {
   row.emissivity_s = solver.collocation().emissivity_seconds();
   row.setup_s = solver.collocation().tree_seconds() + info.operator_s;
   row.operator_mb = static_cast<double>(info.operator_bytes) / (1024.0 * 1024.0);
-  if (const auto* fast = dynamic_cast<const FastOperator*>(&solver.op())) {
+  const auto* rows = dynamic_cast<const RowBlockOperator*>(&solver.op());
+  if (const auto* fast = dynamic_cast<const FastOperator*>(rows ? &rows->local() : &solver.op())) {
     const FastStatistics& s = fast->statistics();
     row.near_pairs = s.near_pairs;
     row.far_pairs = s.far_pairs;
     row.skipped_coplanar = s.skipped_coplanar;
     row.far_stored = s.far_stored;
     row.checked_product_error = info.self_check->relative_error;
+    if (rows) sum_counts(*solver.options().communicator, {&row.near_pairs, &row.far_pairs, &row.skipped_coplanar});
   }
   row.solver = result.solver;
   row.solve_s = result.seconds;

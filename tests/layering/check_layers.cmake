@@ -1,5 +1,6 @@
 # Checks that every #include <panelrad/...> points down the layers, never up:
-#   geometry -> quadrature -> lib: support -> scene -> operator -> solve -> io -> paper -> cli,
+#   geometry -> quadrature -> lib: support -> scene -> operator -> distributed -> solve -> io
+#   (and mpi, beside solve, on distributed) -> paper -> cli,
 #   examples, bench; and that nothing outside the tests includes the test-only oracles.
 # Run: cmake -DSOURCE_DIR=<project> -P check_layers.cmake (fails with the offending file and line).
 cmake_minimum_required(VERSION 3.20)
@@ -11,7 +12,8 @@ endif()
 set(layer_folders
   geometry/include geometry/src geometry/oracles quadrature
   lib/include/panelrad/support lib/src/support lib/include/panelrad/scene lib/src/scene
-  lib/include/panelrad/operator lib/src/operator lib/include/panelrad/solve lib/src/solve
+  lib/include/panelrad/operator lib/src/operator lib/include/panelrad/distributed lib/src/distributed
+  lib/include/panelrad/mpi lib/src/mpi lib/include/panelrad/solve lib/src/solve
   lib/include/panelrad/io lib/src/io paper cli examples bench)
 set(allowed_geometry/include geometry)
 set(allowed_geometry/src geometry)
@@ -23,12 +25,16 @@ set(allowed_lib/include/panelrad/scene ${allowed_lib/src/support} scene)
 set(allowed_lib/src/scene ${allowed_lib/include/panelrad/scene})
 set(allowed_lib/include/panelrad/operator ${allowed_lib/src/scene} operator)
 set(allowed_lib/src/operator ${allowed_lib/include/panelrad/operator})
-set(allowed_lib/include/panelrad/solve ${allowed_lib/src/operator} solve)
+set(allowed_lib/include/panelrad/distributed ${allowed_lib/src/operator} distributed)
+set(allowed_lib/src/distributed ${allowed_lib/include/panelrad/distributed})
+set(allowed_lib/include/panelrad/mpi ${allowed_lib/src/distributed} mpi)
+set(allowed_lib/src/mpi ${allowed_lib/include/panelrad/mpi})
+set(allowed_lib/include/panelrad/solve ${allowed_lib/src/distributed} solve)
 set(allowed_lib/src/solve ${allowed_lib/include/panelrad/solve})
 set(allowed_lib/include/panelrad/io ${allowed_lib/src/solve} io)
 set(allowed_lib/src/io ${allowed_lib/include/panelrad/io})
 set(allowed_paper ${allowed_lib/src/io} paper)
-set(allowed_cli ${allowed_paper})
+set(allowed_cli ${allowed_paper} mpi)
 set(allowed_examples ${allowed_lib/src/io})
 set(allowed_bench ${allowed_paper})
 

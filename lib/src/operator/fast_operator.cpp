@@ -598,6 +598,7 @@ FastOperator::MemoryEstimate FastOperator::estimate_memory(const Collocation& co
   const double per_row = sampled ? 1.0 / static_cast<double>(sampled) : 0.0;
   const std::size_t near_pairs = static_cast<std::size_t>(static_cast<double>(near) * per_row * static_cast<double>(rows));
   e.far_pairs = static_cast<std::size_t>(static_cast<double>(far) * per_row * static_cast<double>(rows));
+  e.near_pairs = near_pairs;
   e.list_bytes = near_pairs * (sizeof(Index) + sizeof(double)) + e.far_pairs * sizeof(Index);
   e.coefficient_bytes = e.far_pairs * T * sizeof(double);
   e.bytes = e.list_bytes + fixed_bytes(static_cast<std::size_t>(n), clusters, degree, static_cast<std::size_t>(m));
@@ -879,11 +880,17 @@ void FastOperator::apply_rows(const Eigen::VectorXd& v, Eigen::VectorXd& y_block
 void FastOperator::apply_block(const Eigen::MatrixXd& V, Eigen::MatrixXd& Y) const {
   if (!holds_all_rows())
     throw std::logic_error("FastOperator::apply_block: the operator holds only rows [" + std::to_string(row_begin_) +
-                           ", " + std::to_string(row_end_) + ") of n = " + std::to_string(n_));
+                           ", " + std::to_string(row_end_) + ") of n = " + std::to_string(n_) +
+                           "; apply_rows_block gives those rows");
+  apply_rows_block(V, Y);
+}
+
+void FastOperator::apply_rows_block(const Eigen::MatrixXd& V, Eigen::MatrixXd& Y) const {
   if (V.rows() != n_) throw std::invalid_argument("FastOperator::apply_block: vector size differs from n");
   static_assert(kBlockColumns == 4, "apply_block dispatches on 1..4 columns");
   const Index columns = static_cast<Index>(V.cols());
-  Y.resize(n_, columns);
+  const Index rows = row_end_ - row_begin_;
+  Y.resize(rows, columns);
   const std::size_t n = static_cast<std::size_t>(n_);
   std::unique_lock<std::mutex> lock(workspace_mutex_, std::try_to_lock);  // a concurrent product: its own
   ProductWorkspace own;
@@ -914,12 +921,13 @@ void FastOperator::apply_block(const Eigen::MatrixXd& V, Eigen::MatrixXd& Y) con
       std::vector<double> scratch(static_cast<std::size_t>(terms_));
       double out[kBlockColumns];
 #pragma omp for schedule(dynamic, 256)
-      for (Index r = 0; r < n_; ++r) {
+      for (Index r = 0; r < rows; ++r) {
+        const Index i = row_begin_ + r;
         switch (C) {
-          case 1: apply_row_columns<1>(r, v_block.data(), m_block.data(), lv, scratch.data(), out); break;
-          case 2: apply_row_columns<2>(r, v_block.data(), m_block.data(), lv, scratch.data(), out); break;
-          case 3: apply_row_columns<3>(r, v_block.data(), m_block.data(), lv, scratch.data(), out); break;
-          default: apply_row_columns<4>(r, v_block.data(), m_block.data(), lv, scratch.data(), out); break;
+          case 1: apply_row_columns<1>(i, v_block.data(), m_block.data(), lv, scratch.data(), out); break;
+          case 2: apply_row_columns<2>(i, v_block.data(), m_block.data(), lv, scratch.data(), out); break;
+          case 3: apply_row_columns<3>(i, v_block.data(), m_block.data(), lv, scratch.data(), out); break;
+          default: apply_row_columns<4>(i, v_block.data(), m_block.data(), lv, scratch.data(), out); break;
         }
         for (int c = 0; c < C; ++c) Y(r, first + c) = out[c];
       }

@@ -76,7 +76,8 @@ std::shared_ptr<const geometry::Occluders> scene_occluders(const geometry::Clust
 bool single_precision_far_field(Visibility) { return true; }
 
 std::unique_ptr<RadiosityOperator> make_operator(const Collocation& collocation, const OperatorOptions& options,
-                                                 Visibility visibility, const SetupProgress& progress) {
+                                                 Visibility visibility, const SetupProgress& progress,
+                                                 const RowRange& rows, int probe_samples) {
   // unoccluded: V = 1, exact on a convex surface (operator_factory.hpp); both operators integrate
   // G without a visibility factor and do no visibility work. occluded: V from the scene's faces.
   if (visibility == Visibility::automatic)
@@ -98,6 +99,8 @@ std::unique_ptr<RadiosityOperator> make_operator(const Collocation& collocation,
       fast.occluders = occluders;
       fast.single_precision_coefficients = single_precision_far_field(visibility);
       fast.expected_products = options.expected_products;
+      fast.rows = rows;
+      fast.probe_samples = probe_samples;
       return std::make_unique<FastOperator>(collocation, fast);
     }
     case OperatorMethod::automatic: break;

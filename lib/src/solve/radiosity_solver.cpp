@@ -77,6 +77,9 @@ void RadiositySolver::setup() {
   if (info_.visibility == Visibility::unoccluded && scene_.shape() != geometry::SceneShape::convex)
     throw std::invalid_argument("visibility: V = 1 (unoccluded) is exact on a convex scene only, and this scene is "
                                 "not proven convex; use auto or occluded");
+  if (options_.communicator && options_.solver.kind == SolverKind::lu)
+    throw std::invalid_argument("solver: LU factors the whole matrix I - K_n on one process; with several processes "
+                                "use neumann, gmres or auto");
   info_.conditioning_reflectivity = scene_.max_reflectivity();  // NaN: rho given as a function
   choose_parameters_and_plan();
   discretize();
@@ -133,7 +136,8 @@ void RadiositySolver::discretize() {
   say(fmt("subdivision done in %.2f s", info_.subdivision_s));
 }
 
-std::unique_ptr<RadiosityOperator> RadiositySolver::make(const Collocation& rows, const OperatorOptions& parameters) {
+std::unique_ptr<RadiosityOperator> RadiositySolver::make(const Collocation& rows, const OperatorOptions& parameters,
+                                                         const RowRange& held, int probe_samples) {
   stage_ = "building the operator (" + describe_parameters(parameters) + ")";
   stage_bytes_ = info_.memory.op;
   OperatorOptions op = parameters;
@@ -151,7 +155,7 @@ std::unique_ptr<RadiosityOperator> RadiositySolver::make(const Collocation& rows
   return make_operator(rows, op, info_.visibility, [this](const std::string& line) {
     stage_ = "building the operator: " + line;
     say(line);
-  });
+  }, held, probe_samples);
 }
 
 // Occluded scenes: the coverings (42), refined along every shadow, are most of the setup, and a
@@ -235,26 +239,28 @@ void RadiositySolver::build_operator() {
     info_.self_check_threshold =
         self_check_threshold(problem_size(scene_.mesh(), info_.level), info_.conditioning_reflectivity);
   std::string why = tighten ? "(nothing stricter to try)" : "(manual parameters, not tightened)";
-  if (op.method == OperatorMethod::fast && tighten && info_.visibility == Visibility::occluded) {
+  if (op.method == OperatorMethod::fast && tighten && info_.visibility == Visibility::occluded)
     why = "(none of the stricter settings probed passes)";
+  info_.partition.begin = {0, info_.n};
+  if (options_.communicator) {
+    build_rows_of_this_process(rows, op, tighten);
+  } else if (op.method == OperatorMethod::fast && tighten && info_.visibility == Visibility::occluded) {
     say("fast operator: probing the setting on the self-check's sampled rows");
     choose_by_probes(rows, op);
     op_ = make(rows, op);  // its self-check is the probe's (the same rows, computed alike)
   } else {
     op_ = make(rows, op);
-    if (const auto* fast = dynamic_cast<const FastOperator*>(op_.get())) {
+    if (dynamic_cast<const FastOperator*>(op_.get())) {
       say("fast operator: checking the product on sampled exact rows");
-      info_.self_check = fast->self_check(kSelfCheckSamples);
-      while (tighten && !(info_.self_check->relative_error <= info_.self_check_threshold)) {
-        const OperatorOptions stricter = tighten_parameters(op);
-        if (stricter == op) break;  // nothing stricter
-        say(fmt("self-check %.2e above %.2e: tightening", info_.self_check->relative_error, info_.self_check_threshold));
-        op = stricter;
-        ++info_.tightened;
-        op_.reset();  // free the looser operator before building the stricter one
-        op_ = make(rows, op);
-        info_.self_check = dynamic_cast<const FastOperator&>(*op_).self_check(kSelfCheckSamples);
-      }
+      bool built = true;  // op_ is the operator of op
+      check_and_tighten(op, tighten, [&](const OperatorOptions& o) {
+        if (!built) {
+          op_.reset();  // free the looser operator before building the stricter one
+          op_ = make(rows, o);
+        }
+        built = false;
+        return dynamic_cast<const FastOperator&>(*op_).self_check(kSelfCheckSamples);
+      });
     }
   }
   if (info_.self_check && !(info_.self_check->relative_error <= info_.self_check_threshold))
@@ -267,6 +273,55 @@ void RadiositySolver::build_operator() {
   say(fmt("operator ready in %.2f s: ", info_.operator_s) + describe_parameters(op) + ", " +
       format_bytes(static_cast<double>(info_.operator_bytes)));
 }
+
+// Step 6's loop: the self-check of the operator of `op` (check(op): that operator's, or its
+// probe's), and while it fails and `tighten`, the next tighten_parameters and its check.
+void RadiositySolver::check_and_tighten(OperatorOptions& op, bool tighten,
+                                        const std::function<FastSelfCheck(const OperatorOptions&)>& check) {
+  info_.self_check = check(op);
+  while (tighten && !(info_.self_check->relative_error <= info_.self_check_threshold)) {
+    const OperatorOptions stricter = tighten_parameters(op);
+    if (stricter == op) break;  // nothing stricter
+    say(fmt("self-check %.2e above %.2e: tightening", info_.self_check->relative_error, info_.self_check_threshold));
+    op = stricter;
+    ++info_.tightened;
+    info_.self_check = check(op);
+  }
+}
+
+// Steps 5-6 on one of several processes: the parameters chosen as build_operator chooses them on
+// one process, each self-check on a probe of the sampled rows (the same check, bit for bit, at the
+// cost of those rows); then the operator of this process's rows.
+void RadiositySolver::build_rows_of_this_process(const Collocation& rows, OperatorOptions& op, bool tighten) {
+  const Communicator& comm = *options_.communicator;
+  if (op.method == OperatorMethod::fast && tighten && info_.visibility == Visibility::occluded) {
+    say("fast operator: probing the setting on the self-check's sampled rows");
+    choose_by_probes(rows, op);
+  } else if (op.method == OperatorMethod::fast) {
+    say("fast operator: checking the product on sampled exact rows (a probe of those rows)");
+    check_and_tighten(op, tighten, [&](const OperatorOptions& o) {
+      const std::unique_ptr<RadiosityOperator> probe = make(rows, o, {}, kSelfCheckSamples);
+      return dynamic_cast<const FastOperator&>(*probe).self_check(kSelfCheckSamples);
+    });
+  }
+  // The rows cut by the fast product's measured cost per block; the dense matrix's rows cost alike.
+  const bool fast = op.method == OperatorMethod::fast;
+  const std::shared_ptr<const geometry::Occluders> occluders =
+      fast && info_.visibility == Visibility::occluded ? scene_occluders(rows.tree()) : nullptr;
+  const std::vector<double> cost =
+      fast ? fast_product_block_costs(rows, op.eta, op.degree, occluders.get(), op.near)
+           : std::vector<double>(static_cast<std::size_t>((info_.n + kRowBlock - 1) / kRowBlock), 1.0);
+  info_.partition = partition_rows(info_.n, cost, comm.size());
+  const RowRange mine = info_.partition.rows(comm.rank());
+  say("rows of " + std::to_string(comm.size()) + " processes cut by measured cost; process " +
+      std::to_string(comm.rank()) + " holds [" + std::to_string(mine.begin) + ", " + std::to_string(mine.end) + ")");
+  op_ = std::make_unique<RowBlockOperator>(make(rows, op, fast ? mine : RowRange{}), mine, comm);
+  rows_op_ = static_cast<const RowBlockOperator*>(op_.get());
+}
+
+Eigen::VectorXd RadiositySolver::held(const Eigen::VectorXd& v) const { return rows_op_ ? rows_op_->rows_of(v) : v; }
+
+Eigen::VectorXd RadiositySolver::whole(const Eigen::VectorXd& v) const { return rows_op_ ? rows_op_->gather(v) : v; }
 
 Collocation::ChannelValues RadiositySolver::channel_values(std::size_t channel) const {
   if (channel >= scene_.num_channels())
@@ -281,8 +336,8 @@ Eigen::VectorXd RadiositySolver::irradiance(const Eigen::VectorXd& u) const {
     throw std::logic_error("irradiance: the operator holds K_n = diag(rho) H (fold_reflectivity), not H");
   if (u.size() != info_.n) throw std::invalid_argument("irradiance: vector size differs from n");
   Eigen::VectorXd Hu;
-  op_->apply(u, Hu);
-  return Hu;
+  op_->apply(held(u), Hu);
+  return whole(Hu);
 }
 
 ChannelSolve RadiositySolver::solve(std::size_t channel) const {
@@ -309,6 +364,7 @@ ChannelSolve RadiositySolver::solve(const Eigen::VectorXd& rho, const Eigen::Vec
 SolverOptions RadiositySolver::iteration_options(const std::string& label) const {
   SolverOptions solver = options_.solver;
   solver.tolerance = info_.tolerance;
+  solver.communicator = options_.communicator;
   if (options_.progress)
     solver.progress = [this, label](int products, double estimate) {
       say(label + fmt(": product %.0f, error estimate %.2e", products, estimate));
@@ -360,11 +416,12 @@ ChannelSolve RadiositySolver::solve_values(const Eigen::VectorXd& rho, const Eig
   SolveResult r;
   try {
     if (options_.fold_reflectivity) {
-      r = panelrad::solve(*op_, E, solver, max_rho);
+      r = panelrad::solve(*op_, held(E), solver, max_rho);
     } else {
-      const ScaledOperator K(*op_, rho);
-      r = panelrad::solve(K, E, solver, max_rho);
+      const ScaledOperator K(*op_, held(rho));
+      r = panelrad::solve(K, held(E), solver, max_rho);
     }
+    r.u = whole(r.u);
   } catch (const std::bad_alloc&) {
     throw ResourceError(out_of_memory_message(stage_, static_cast<double>(info_.n), stage_bytes_));
   }
@@ -402,15 +459,17 @@ std::vector<ChannelSolve> RadiositySolver::solve_channels(const std::vector<std:
       continue;
     }
     if (!v.E.allFinite()) throw std::invalid_argument("solver: right-hand side has NaN or Inf entries");
-    group.push_back({s, v.rho, max_rho, NeumannIteration(v.E, iteration_options(label)), Stopwatch()});
+    group.push_back({s, held(v.rho), max_rho, NeumannIteration(held(v.E), iteration_options(label)), Stopwatch()});
   }
   stage_ = "solving " + std::to_string(group.size()) + " channels (32) together with neumann";
   stage_bytes_ = info_.memory.solver;
   try {
     Eigen::MatrixXd V, Y;
     std::vector<std::size_t> active;
+    const BlockedReductions sums(options_.communicator);
     const auto finish = [&](Iterating& g) {
       SolveResult r = g.iteration.release();
+      r.u = whole(r.u);
       r.seconds = g.clock.seconds();
       if (automatic)
         r.choice = "auto: Neumann, " + std::to_string(group.size()) + " channels together (block products); " +
@@ -429,9 +488,9 @@ std::vector<ChannelSolve> RadiositySolver::solve_channels(const std::vector<std:
     // GMRES continues the channel when it costs less.
     const auto hand_over = [&](Iterating& g, std::size_t columns) {
       const NeumannIteration& it = g.iteration;
-      const double u_norm = it.next().lpNorm<Eigen::Infinity>();
+      const double u_norm = sums.inf_norm(it.next());
       if (!(u_norm > 0)) return;
-      const double reduction = it.step().lpNorm<Eigen::Infinity>() / u_norm;
+      const double reduction = sums.inf_norm(it.step()) / u_norm;
       const ExpectedProducts e = expected_products(it.ratio(), g.max_rho, info_.tolerance, reduction);
       if (e.neumann <= 0 || e.gmres <= 0) return;
       const double c = static_cast<double>(columns);
@@ -441,6 +500,7 @@ std::vector<ChannelSolve> RadiositySolver::solve_channels(const std::vector<std:
       Eigen::VectorXd previous = it.next() - it.step();  // u^(k), whose residual is the step
       SolveResult r = solve_gmres_from(K, it.rhs(), iteration_options(labels[g.slot]), g.max_rho, std::move(previous),
                                        it.step(), it.steps());
+      r.u = whole(r.u);
       r.seconds = g.clock.seconds();
       std::ostringstream why;
       why << "auto: Neumann for " << it.steps() << " steps, then GMRES: measured ratio " << it.ratio()
@@ -456,7 +516,7 @@ std::vector<ChannelSolve> RadiositySolver::solve_channels(const std::vector<std:
       for (std::size_t j = 0; j < group.size(); ++j)
         if (!group[j].iteration.finished() && !group[j].handed) active.push_back(j);
       if (active.empty()) break;
-      V.resize(info_.n, static_cast<Eigen::Index>(active.size()));
+      V.resize(op_->size(), static_cast<Eigen::Index>(active.size()));
       for (std::size_t a = 0; a < active.size(); ++a) V.col(static_cast<Eigen::Index>(a)) = group[active[a]].iteration.next();
       op_->apply_block(V, Y);  // H v of every channel still iterating, in one pass
       for (std::size_t a = 0; a < active.size(); ++a) {
@@ -466,7 +526,7 @@ std::vector<ChannelSolve> RadiositySolver::solve_channels(const std::vector<std:
         const Eigen::VectorXd Kv = Hv.cwiseProduct(g.rho);  // (K v)_i = rho_i (H v)_i, (33)
         g.iteration.take(Kv);
         if (last) {
-          out[g.slot].irradiance = Hv;  // H u of the final u: the light arriving
+          out[g.slot].irradiance = whole(Hv);  // H u of the final u: the light arriving
           finish(g);
         } else if (together && !g.iteration.finished() && !g.iteration.awaiting_residual() &&
                    g.iteration.steps() == kStepsBeforeChoice) {

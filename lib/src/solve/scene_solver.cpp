@@ -18,6 +18,16 @@ std::string fmt(const char* format, double a, double b = 0) {
   return buf;
 }
 
+// The visibility work of the operator: with several processes, the sums of their rows' work.
+VisibilityWork operator_visibility_work(const RadiositySolver& solver) {
+  const auto* rows = dynamic_cast<const RowBlockOperator*>(&solver.op());
+  if (!rows) return visibility_work(solver.op());
+  VisibilityWork w = visibility_work(rows->local());
+  sum_counts(*solver.options().communicator,
+             {&w.visible_pairs, &w.hidden_pairs, &w.partial_pairs, &w.clipped_elements, &w.rays_cast});
+  return w;
+}
+
 // What the setup did, for the summary.
 void copy_setup(const RadiositySolver& solver, SceneSolution& out) {
   const RadiositySolverInfo& info = solver.info();
@@ -34,7 +44,7 @@ void copy_setup(const RadiositySolver& solver, SceneSolution& out) {
   }
   out.tightened = info.tightened;
   out.visibility = info.visibility;
-  out.visibility_work = visibility_work(solver.op());
+  out.visibility_work = operator_visibility_work(solver);
   out.subdivision_s = info.subdivision_s;
   out.operator_s = info.operator_s;
   out.operator_bytes = info.operator_bytes;

@@ -11,31 +11,30 @@
 namespace panelrad {
 
 namespace {
-double inf_norm(const Eigen::VectorXd& v) { return v.size() ? v.lpNorm<Eigen::Infinity>() : 0.0; }
-
 double relative_residual(const RadiosityOperator& K, const Eigen::VectorXd& E, const Eigen::VectorXd& u) {
   Eigen::VectorXd Ku;
   K.apply(u, Ku);
-  const double e = inf_norm(E);
-  const double r = inf_norm(E - u + Ku);
+  const double e = E.lpNorm<Eigen::Infinity>();
+  const double r = (E - u + Ku).lpNorm<Eigen::Infinity>();
   return e > 0 ? r / e : r;
 }
 
-void check_sizes(const RadiosityOperator& K, const Eigen::VectorXd& E) {
+void check_sizes(const RadiosityOperator& K, const Eigen::VectorXd& E, const BlockedReductions& sums) {
   if (E.size() != K.size()) throw std::invalid_argument("solver: right-hand side size differs from n");
-  if (!E.allFinite()) throw std::invalid_argument("solver: right-hand side has NaN or Inf entries");
+  if (!sums.all_finite(E)) throw std::invalid_argument("solver: right-hand side has NaN or Inf entries");
 }
 // One restart cycle of GMRES on (I - K) c = res: Arnoldi with modified Gram-Schmidt and Givens
 // rotations, up to m products (and no more than options.max_iterations in all), stopping when the
 // error bound amplification |g[j+1]| (|g[j+1]| the 2-norm residual) falls to `stop`.
 class GmresCycle {
  public:
-  GmresCycle(Eigen::Index n, int m) : m_(m), V_(n, m + 1), H_(Eigen::MatrixXd::Zero(m + 1, m)), cs_(m), sn_(m), g_(m + 1) {}
+  GmresCycle(Eigen::Index n, int m, const BlockedReductions& sums)
+      : m_(m), sums_(sums), V_(n, m + 1), H_(Eigen::MatrixXd::Zero(m + 1, m)), cs_(m), sn_(m), g_(m + 1) {}
 
   /// The correction c_j in the Krylov space of res; `products` counts the products with K.
   Eigen::VectorXd correction(const RadiosityOperator& K, const Eigen::VectorXd& res, double stop,
                              const SolverOptions& options, double amplification, int& products) {
-    const double beta = res.norm();
+    const double beta = sums_.norm(res);
     V_.col(0) = res / beta;
     g_.setZero();
     g_[0] = beta;
@@ -65,10 +64,10 @@ class GmresCycle {
     K.apply(V_.col(j), Kv);
     Eigen::VectorXd w = V_.col(j) - Kv;  // (I - K) v_j
     for (int i = 0; i <= j; ++i) {       // modified Gram-Schmidt
-      H_(i, j) = w.dot(V_.col(i));
+      H_(i, j) = sums_.dot(w, V_.col(i));
       w -= H_(i, j) * V_.col(i);
     }
-    H_(j + 1, j) = w.norm();
+    H_(j + 1, j) = sums_.norm(w);
     if (H_(j + 1, j) > 0) V_.col(j + 1) = w / H_(j + 1, j);
     for (int i = 0; i < j; ++i) {  // apply previous Givens rotations
       const double t = cs_[i] * H_(i, j) + sn_[i] * H_(i + 1, j);
@@ -86,6 +85,7 @@ class GmresCycle {
   }
 
   int m_;
+  const BlockedReductions& sums_;
   Eigen::MatrixXd V_, H_;
   Eigen::VectorXd cs_, sn_, g_;
 };
@@ -119,9 +119,9 @@ const char* to_string(SolverKind kind) {
 }
 
 NeumannIteration::NeumannIteration(Eigen::VectorXd E, SolverOptions options)
-    : E_(std::move(E)), u_(E_), options_(std::move(options)) {  // u^(1) = E + K 0
+    : E_(std::move(E)), u_(E_), options_(std::move(options)), sums_(options_.communicator) {  // u^(1) = E + K 0
   r_.solver = "neumann";
-  e_norm_ = inf_norm(E_);
+  e_norm_ = sums_.inf_norm(E_);
   previous_norm_ = e_norm_;
   if (e_norm_ == 0) {
     phase_ = Phase::finished;  // u = 0 exactly, no product
@@ -147,7 +147,7 @@ void NeumannIteration::stop(SolveStatus status) {
 void NeumannIteration::take(const Eigen::VectorXd& Kv) {
   if (phase_ == Phase::finished) throw std::logic_error("NeumannIteration::take: the iteration has finished");
   if (phase_ == Phase::residual) {  // ||E - (I - K) u||_inf / ||E||_inf
-    r_.residual = inf_norm(E_ - u_ + Kv) / e_norm_;
+    r_.residual = sums_.inf_norm(E_ - u_ + Kv) / e_norm_;
     r_.u = std::move(u_);
     phase_ = Phase::finished;
     return;
@@ -155,14 +155,14 @@ void NeumannIteration::take(const Eigen::VectorXd& Kv) {
   const int k = ++r_.iterations;
   Eigen::VectorXd next = E_ + Kv;
   step_ = next - u_;  // u^(k+1) - u^(k) = K (u^(k) - u^(k-1)), (35)
-  const double step_norm = inf_norm(step_);
+  const double step_norm = sums_.inf_norm(step_);
   u_ = std::move(next);
   const double q = previous_norm_ > 0 ? step_norm / previous_norm_ : 0;  // estimate of (36)
   r_.ratio_history.push_back(q);
   ratio_ = q;
   if (options_.progress) options_.progress(r_.iterations, q < 1 ? q / (1 - q) * step_norm : 0.0);
   previous_norm_ = step_norm;
-  if (!u_.allFinite()) throw SolverError("Neumann iteration produced NaN/Inf at step " + std::to_string(k));
+  if (!sums_.all_finite(u_)) throw SolverError("Neumann iteration produced NaN/Inf at step " + std::to_string(k));
   // Error bound from (35) with contraction q < 1: ||u_n - u^(k+1)|| <= q/(1-q) ||step||;
   // none (+inf) while the ratio is not yet known to be below 1.
   r_.error_estimate = std::numeric_limits<double>::infinity();
@@ -170,7 +170,7 @@ void NeumannIteration::take(const Eigen::VectorXd& Kv) {
     const double q_safe = std::max(q, r_.ratio_history[r_.ratio_history.size() - 2]);
     if (q_safe < 1) {
       r_.error_estimate = q_safe / (1 - q_safe) * step_norm;
-      if (r_.error_estimate <= options_.tolerance * inf_norm(u_)) return stop(SolveStatus::converged);
+      if (r_.error_estimate <= options_.tolerance * sums_.inf_norm(u_)) return stop(SolveStatus::converged);
     }
   }
   if (step_norm == 0) {  // exact fixed point reached
@@ -181,7 +181,7 @@ void NeumannIteration::take(const Eigen::VectorXd& Kv) {
 }
 
 SolveResult solve_neumann(const RadiosityOperator& K, const Eigen::VectorXd& E, const SolverOptions& options) {
-  check_sizes(K, E);
+  check_sizes(K, E, BlockedReductions(options.communicator));
   Stopwatch clock;
   NeumannIteration iteration(E, options);
   Eigen::VectorXd Kv;
@@ -196,13 +196,14 @@ SolveResult solve_neumann(const RadiosityOperator& K, const Eigen::VectorXd& E, 
 
 SolveResult solve_gmres(const RadiosityOperator& K, const Eigen::VectorXd& E, const SolverOptions& options,
                         double max_reflectivity) {
-  check_sizes(K, E);
+  check_sizes(K, E, BlockedReductions(options.communicator));
   return solve_gmres_from(K, E, options, max_reflectivity, Eigen::VectorXd::Zero(E.size()), E);
 }
 
 SolveResult solve_gmres_from(const RadiosityOperator& K, const Eigen::VectorXd& E, const SolverOptions& options,
                              double max_reflectivity, Eigen::VectorXd u, Eigen::VectorXd residual, int products) {
-  check_sizes(K, E);
+  const BlockedReductions sums(options.communicator);
+  check_sizes(K, E, sums);
   if (u.size() != E.size() || residual.size() != E.size())
     throw std::invalid_argument("solve_gmres_from: the initial iterate or its residual differs in size from n");
   Stopwatch clock;
@@ -210,16 +211,17 @@ SolveResult solve_gmres_from(const RadiosityOperator& K, const Eigen::VectorXd& 
   r.solver = "gmres";
   r.iterations = products;
   const Eigen::Index n = E.size();
-  const int m = std::max(1, std::min<int>(options.gmres_restart, static_cast<int>(n)));
+  // The restart from the whole n, the same on every process.
+  const int m = std::max(1, std::min<int>(options.gmres_restart, static_cast<int>(sums.total_rows(n))));
   // ||u - u_k||_inf <= ||(I-K)^-1||_inf ||res||_inf <= ||res||_inf / (1 - max rho)   (11)
   const double amplification = (max_reflectivity >= 0 && max_reflectivity < 1) ? 1.0 / (1.0 - max_reflectivity) : 1e3;
   Eigen::VectorXd Kv;
-  const double e_norm2 = E.norm();
+  const double e_norm2 = sums.norm(E);
   if (e_norm2 == 0) {
     r.u = Eigen::VectorXd::Zero(n);
     return r;
   }
-  GmresCycle cycle(n, m);
+  GmresCycle cycle(n, m, sums);
   bool residual_known = true;  // the first residual is given (u = 0: E itself, no product K 0)
   while (r.iterations < options.max_iterations) {
     Eigen::VectorXd res;
@@ -231,20 +233,22 @@ SolveResult solve_gmres_from(const RadiosityOperator& K, const Eigen::VectorXd& 
       ++r.iterations;
       res = E - u + Kv;
     }
-    const double res_inf = inf_norm(res);
+    const double res_inf = sums.inf_norm(res);
     r.error_estimate = amplification * res_inf;
     if (options.progress) options.progress(r.iterations, r.error_estimate);
-    if (r.error_estimate <= options.tolerance * std::max(inf_norm(u), 1e-300)) break;
-    const double stop = 0.5 * options.tolerance * std::max(inf_norm(u), inf_norm(E));
+    const double u_norm = sums.inf_norm(u);
+    if (r.error_estimate <= options.tolerance * std::max(u_norm, 1e-300)) break;
+    const double stop = 0.5 * options.tolerance * std::max(u_norm, sums.inf_norm(E));
     u += cycle.correction(K, res, stop, options, amplification, r.iterations);
-    if (!u.allFinite()) throw SolverError("GMRES produced NaN/Inf");
+    if (!sums.all_finite(u)) throw SolverError("GMRES produced NaN/Inf");
   }
   K.apply(u, Kv);
   ++r.iterations;
   const Eigen::VectorXd res = E - u + Kv;
-  r.error_estimate = amplification * inf_norm(res);
-  r.residual = inf_norm(res) / inf_norm(E);
-  if (r.error_estimate > options.tolerance * inf_norm(u)) {
+  const double res_inf = sums.inf_norm(res);
+  r.error_estimate = amplification * res_inf;
+  r.residual = res_inf / sums.inf_norm(E);
+  if (r.error_estimate > options.tolerance * sums.inf_norm(u)) {
     std::ostringstream os;
     os << "GMRES did not reach the tolerance " << options.tolerance << " in " << options.max_iterations
        << " products (error bound " << r.error_estimate << ")";
@@ -257,7 +261,7 @@ SolveResult solve_gmres_from(const RadiosityOperator& K, const Eigen::VectorXd& 
 }
 
 SolveResult solve_lu(const DenseOperator& K, const Eigen::VectorXd& E) {
-  check_sizes(K, E);
+  check_sizes(K, E, BlockedReductions());
   Stopwatch clock;
   SolveResult r;
   r.solver = "lu";

@@ -192,6 +192,9 @@ class FastOperator final : public RadiosityOperator {
   /// taken in the same order as apply's, while the stored far-field coefficients (44)-(45) and the
   /// near-field lists are read once per row for up to kBlockColumns columns at a time.
   void apply_block(const Eigen::MatrixXd& V, Eigen::MatrixXd& Y) const override;
+  /// The rows held of K_n V: Y has end - begin rows, column c bit-identical to apply_rows(V.col(c))
+  /// (apply_block's products on the rows held; V has all n rows).
+  void apply_rows_block(const Eigen::MatrixXd& V, Eigen::MatrixXd& Y) const;
   /// Columns of V whose rows are computed together in apply_block.
   static constexpr int kBlockColumns = 4;
   std::string name() const override { return "fast"; }
@@ -221,6 +224,7 @@ class FastOperator final : public RadiosityOperator {
     std::size_t bytes = 0;         ///< held after setup, coefficients not stored
     std::size_t list_bytes = 0;    ///< of which near/far lists (held twice during setup)
     std::size_t far_pairs = 0;     ///< estimated (point, cluster) pairs in the far field
+    std::size_t near_pairs = 0;    ///< estimated (point, element) pairs in the near field
     std::size_t coefficient_bytes = 0;  ///< far_pairs x terms x 8, if stored
   };
   static MemoryEstimate estimate_memory(const Collocation& collocation, double eta, int degree,

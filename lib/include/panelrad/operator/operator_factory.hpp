@@ -4,6 +4,7 @@
 #include <panelrad/geometry/occluders.hpp>
 #include <panelrad/operator/clustering_parameters.hpp>
 #include <panelrad/operator/collocation.hpp>
+#include <panelrad/operator/fast_operator.hpp>
 #include <panelrad/operator/linear_operator.hpp>
 #include <panelrad/operator/near_field.hpp>
 
@@ -81,8 +82,12 @@ bool single_precision_far_field(Visibility visibility);
 /// (K_n v)_i = rho(P_i)/pi Int_S v G(P_i, Q) V(P_i, Q) dS_Q. options.method automatic and
 /// visibility automatic are std::invalid_argument (the solver resolves them). With occluded, the
 /// occluders are the level-0 triangles of the collocation's tree (the scene's faces).
+///
+/// The fast operator may hold some rows only (FastOptions::rows) or be a probe of the self-check's
+/// sampled rows (FastOptions::probe_samples > 0); the dense operator always holds every row.
 std::unique_ptr<RadiosityOperator> make_operator(const Collocation& collocation, const OperatorOptions& options,
                                                  Visibility visibility = Visibility::unoccluded,
-                                                 const SetupProgress& progress = {});
+                                                 const SetupProgress& progress = {}, const RowRange& rows = {},
+                                                 int probe_samples = 0);
 
 }  // namespace panelrad

@@ -27,6 +27,16 @@
 //   then solve_channels solves every channel, the Neumann ones in one pass over H per step.
 //   7. the iteration's tolerance: options.solver.tolerance, or (<= 0) discretization_tolerance.
 // solve(): (I - diag(rho) H) u = E by options.solver.kind (automatic: choose_solver(max rho)).
+//
+// Several processes (options.communicator): every process does steps 1-4 and the parameter
+// choice of step 6 alike (the fast operator's self-check on probes of the sampled rows,
+// FastOptions::probe_samples, whose check is the whole operator's bit for bit), then holds the
+// rows of its part of the row partition (row_partition.hpp, cut by the measured cost of the rows)
+// in a RowBlockOperator; the iterations run on those rows with the blocked reductions of
+// solvers.hpp, and the answers (u, H u) are gathered whole on every process: the same bits as one
+// process.
+#include <panelrad/distributed/row_block_operator.hpp>
+#include <panelrad/distributed/row_partition.hpp>
 #include <panelrad/operator/collocation.hpp>
 #include <panelrad/operator/fast_operator.hpp>
 #include <panelrad/operator/linear_operator.hpp>
@@ -93,6 +103,10 @@ struct RadiositySolverOptions {
   std::size_t result_bytes_per_element = 0;
   /// Stage lines (subdivision, operator stages, self-check, each product) as they happen.
   std::function<void(const std::string&)> progress;
+  /// The processes sharing the rows (nullptr: this process alone, holding every row). Every
+  /// process makes the same calls (setup, solves) with the same scene and options; must outlive
+  /// the solver. The LU solver is refused (it factors the whole matrix on one process).
+  const Communicator* communicator = nullptr;
 };
 
 /// One solve of (32).
@@ -126,6 +140,7 @@ struct RadiositySolverInfo {
   std::size_t operator_bytes = 0;
   LevelMemoryEstimate memory;          ///< step 3's estimate
   std::vector<std::string> warnings;   ///< e.g. a self-check above its threshold with nothing stricter
+  RowPartition partition;              ///< the rows of each process (one process: [0, n))
 };
 
 class RadiositySolver {
@@ -147,7 +162,8 @@ class RadiositySolver {
   const std::optional<FastSelfCheck>& self_check() const { return info_.self_check; }
   double tolerance() const { return info_.tolerance; }
   const Collocation& collocation() const { return *collocation_; }
-  /// H, or K_n with fold_reflectivity.
+  /// H, or K_n with fold_reflectivity; with a communicator, the RowBlockOperator of this
+  /// process's rows.
   const RadiosityOperator& op() const { return *op_; }
   std::size_t operator_bytes() const { return info_.operator_bytes; }
 
@@ -175,7 +191,14 @@ class RadiositySolver {
   void discretize();
   void build_operator();
   void choose_by_probes(const Collocation& rows, OperatorOptions& op);
-  std::unique_ptr<RadiosityOperator> make(const Collocation& rows, const OperatorOptions& op);
+  std::unique_ptr<RadiosityOperator> make(const Collocation& rows, const OperatorOptions& op,
+                                          const RowRange& held = {}, int probe_samples = 0);
+  void build_rows_of_this_process(const Collocation& rows, OperatorOptions& op, bool tighten);
+  void check_and_tighten(OperatorOptions& op, bool tighten,
+                         const std::function<FastSelfCheck(const OperatorOptions&)>& check);
+  /// This process's rows of a whole vector, and the whole vector from every process's rows.
+  Eigen::VectorXd held(const Eigen::VectorXd& whole) const;
+  Eigen::VectorXd whole(const Eigen::VectorXd& held) const;
   ChannelSolve solve_values(const Eigen::VectorXd& rho, const Eigen::VectorXd& E, const std::string& label) const;
   SolverOptions iteration_options(const std::string& label) const;
   SolverKind solver_kind(double max_rho) const;
@@ -186,6 +209,7 @@ class RadiositySolver {
   RadiositySolverInfo info_;
   std::optional<Collocation> collocation_;
   std::unique_ptr<RadiosityOperator> op_;
+  const RowBlockOperator* rows_op_ = nullptr;  // op_, with a communicator
   // Where the setup is, so that an allocation failure can name the stage and its estimate.
   mutable std::string stage_;
   mutable std::size_t stage_bytes_ = 0;

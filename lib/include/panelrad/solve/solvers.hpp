@@ -1,6 +1,11 @@
 #pragma once
 // Solvers of (I - K_n) u_n = E_n, (32), over the RadiosityOperator interface: the Neumann
 // iteration (34) with its convergence ratio (36), restarted GMRES, and dense LU (direct baseline).
+// Every sum over the rows (inner products, 2-norms) is taken in the fixed blocks of
+// BlockedReductions, so that the iterates are the same bits on one process and on any number of
+// processes that share the rows (SolverOptions::communicator).
+#include <panelrad/distributed/blocked_reductions.hpp>
+#include <panelrad/distributed/communicator.hpp>
 #include <panelrad/operator/dense_operator.hpp>
 #include <panelrad/support/error.hpp>
 #include <panelrad/operator/linear_operator.hpp>
@@ -33,6 +38,10 @@ struct SolverOptions {
   /// Called after every product with K_n (products so far, current error estimate; the estimate
   /// is 0 before the iteration has one), e.g. for progress on stderr. May be empty.
   std::function<void(int products, double error_estimate)> progress;
+  /// The processes sharing the rows (nullptr: one process). With several, K is the operator of
+  /// this process's rows (RowBlockOperator), E and the iterates hold those rows, and every
+  /// process runs the same iteration: the reductions are collectives (BlockedReductions).
+  const Communicator* communicator = nullptr;
 };
 
 /// converged: the error estimate reached the tolerance. not_converged: the iteration stopped at
@@ -94,6 +103,7 @@ class NeumannIteration {
   void stop(SolveStatus status);
   Eigen::VectorXd E_, u_, step_;
   SolverOptions options_;
+  BlockedReductions sums_;
   SolveResult r_;
   Phase phase_ = Phase::iterating;
   double previous_norm_ = 0, ratio_ = 0, e_norm_ = 0;

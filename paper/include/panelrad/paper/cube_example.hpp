@@ -26,6 +26,8 @@ struct CubeRunOptions {
   /// parameters (tighten_parameters) and rebuild, until it passes or nothing is stricter
   /// (RadiositySolverOptions::tighten_on_failed_check).
   bool tighten_on_failed_check = false;
+  /// The processes sharing each level's rows (RadiositySolverOptions::communicator; nullptr: one).
+  const Communicator* communicator = nullptr;
 };
 
 /// One line of the table / CSV.
@@ -46,7 +48,8 @@ struct CubeRow {
   double peak_rss_mb = 0;
   double operator_mb = 0;     ///< bytes stored by the operator
   double per_product_s = 0;   ///< solve time / products
-  // Fast method only (section 4): the covering's size and what was stored.
+  // Fast method only (section 4): the covering's size (with several processes, summed over
+  // them) and what was stored.
   std::size_t near_pairs = 0, far_pairs = 0, skipped_coplanar = 0;
   bool far_stored = false;
   double checked_product_error = 0;  ///< FastOperator::self_check on sampled rows
