@@ -102,8 +102,19 @@ void expect_blocks_make_the_whole(const Collocation& col, const FastOptions& opt
   EXPECT_EQ(sum.skipped_coplanar, whole.statistics().skipped_coplanar);
   EXPECT_EQ(sum.skipped_rows, whole.statistics().skipped_rows);
   // The bytes beyond those of an operator holding no rows (frames and moments of the whole
-  // surface) are the lists, coefficients and row starts of the rows held: they add up.
-  EXPECT_EQ(bytes_above_empty, whole.bytes() - empty.bytes());
+  // surface) are the lists, coefficients and row starts of the rows held: the lists and
+  // coefficients add up, and the row starts (with their blocks of 256 rows, a range cut inside a
+  // block holds a block of its own) are what fixed_bytes counts for each range's rows.
+  std::size_t clusters = 0;
+  for (int l = 0; l <= col.tree().finest_level(); ++l) clusters += static_cast<std::size_t>(col.tree().level_size(l));
+  const auto row_bytes = [&](std::size_t rows) {
+    return FastOperator::fixed_bytes(static_cast<std::size_t>(n), clusters, options.degree, rows) -
+           FastOperator::fixed_bytes(static_cast<std::size_t>(n), clusters, options.degree, 0);
+  };
+  std::size_t part_row_bytes = 0;
+  for (const FastOperator* part : blocks)
+    part_row_bytes += row_bytes(static_cast<std::size_t>(part->rows().end - part->rows().begin));
+  EXPECT_EQ(bytes_above_empty - part_row_bytes, whole.bytes() - empty.bytes() - row_bytes(static_cast<std::size_t>(n)));
   EXPECT_EQ(empty.statistics().near_pairs + empty.statistics().far_pairs, 0u);
 }
 
@@ -214,14 +225,21 @@ TEST(FastOperatorRows, InvalidRangesAreRefusedNamingTheRangeAndN) {
   EXPECT_NO_THROW(FastOperator(col, with_rows(FastOptions{}, 192, -1)));  // empty, at the end
 }
 
-// The estimates scale with the rows: the row starts by exactly 16 bytes a row; the lists of a
+// The estimates scale with the rows: the row starts by 8 bytes a row, plus a fixed part per block
+// of 256 rows (at most 256 bytes: the block's record and its two closing starts); the lists of a
 // range of at most 256 rows (every row sampled) are those setup finds, up to the rounding of the
 // per-row average times the row count (one pair); the whole range is the estimate without rows.
 TEST(FastOperatorRows, MemoryEstimatesScaleWithTheRows) {
   const std::size_t n = 3072, clusters = 4092;
   EXPECT_EQ(FastOperator::fixed_bytes(n, clusters, 4), FastOperator::fixed_bytes(n, clusters, 4, n));
-  EXPECT_EQ(FastOperator::fixed_bytes(n, clusters, 4, 1000) - FastOperator::fixed_bytes(n, clusters, 4, 0),
-            1000 * 2 * sizeof(std::int64_t));
+  const auto row_bytes = [&](std::size_t rows) {
+    return FastOperator::fixed_bytes(n, clusters, 4, rows) - FastOperator::fixed_bytes(n, clusters, 4, 0);
+  };
+  const std::size_t per_block = row_bytes(256) - 256 * 2 * sizeof(std::uint32_t);
+  EXPECT_GT(per_block, 0u);
+  EXPECT_LE(per_block, 256u);
+  EXPECT_EQ(row_bytes(512), 2 * row_bytes(256));
+  EXPECT_EQ(row_bytes(1000), 1000 * 2 * sizeof(std::uint32_t) + 4 * per_block);  // 4 blocks, the last partial
 
   const Scene scene = make_paper_cube_scene();
   const Collocation col(scene, 3);

@@ -64,6 +64,26 @@ void gather_frames(const PlaneFrame* const* frames, int count, FrameLanes& lanes
   }
 }
 
+// The frame of cluster id: its origin, its plane's axes.
+void frame_of(const ClusterFrames& frames, std::int32_t id, double* frame) {
+  const ClusterOrigin& o = frames.origin[id];
+  const PlaneFrame& axes = frames.axes[o.axes];
+  for (int k = 0; k < 3; ++k) {
+    frame[k] = o.origin[k];
+    frame[3 + k] = axes.e1[k];
+    frame[6 + k] = axes.e2[k];
+    frame[9 + k] = axes.normal[k];
+  }
+}
+
+// Frame of lane w = that of cluster ids[w] (w < count), the other lanes a copy of lane 0.
+void gather_frames(const ClusterFrames& frames, const std::int32_t* ids, int count, FrameLanes& lanes) {
+  double frame[kLanes][12];
+  for (int w = 0; w < count; ++w) frame_of(frames, ids[w], frame[w]);
+  for (int w = 0; w < kLanes; ++w)
+    for (int k = 0; k < 12; ++k) lanes.v[k][w] = frame[w < count ? w : 0][k];
+}
+
 // The moments of the lanes of the batch starting at pair j0 (zeros beyond count).
 int batch_moments(const std::int32_t* clusters, std::int64_t j0, std::int64_t count, const double* moments,
                   std::size_t stride, const double** m) {
@@ -85,7 +105,7 @@ bool pair_coefficients(const Kernels& kernels, int M, const RowPoint& row, const
   return true;
 }
 
-bool add_recomputed_row(const Kernels& kernels, int M, const RowPoint& row, const PlaneFrame* frames,
+bool add_recomputed_row(const Kernels& kernels, int M, const RowPoint& row, const ClusterFrames& frames,
                         const std::int32_t* clusters, std::int64_t count, const double* moments, int C, RowSums& sums) {
   const std::size_t stride = static_cast<std::size_t>(num_taylor_terms(M)) * static_cast<std::size_t>(C);
   const auto fn = kernels.recomputed[M];
@@ -94,9 +114,7 @@ bool add_recomputed_row(const Kernels& kernels, int M, const RowPoint& row, cons
   for (std::int64_t j0 = 0; j0 < count; j0 += kLanes, set ^= 1) {
     const double* m[kLanes];
     const int in_batch = batch_moments(clusters, j0, count, moments, stride, m);
-    const PlaneFrame* f[kLanes];
-    for (int w = 0; w < in_batch; ++w) f[w] = frames + clusters[j0 + w];
-    gather_frames(f, in_batch, lanes);
+    gather_frames(frames, clusters + j0, in_batch, lanes);
     if (!fn(row, lanes, m, C, sums.v[set])) return false;
   }
   return true;
@@ -108,7 +126,7 @@ double point_total(const double* acc, int c, int w) {
   return (at(0) + at(1)) + (at(2) + at(3));
 }
 
-bool add_points(const Kernels& kernels, int M, const RowPoint* points, int count_points, const PlaneFrame* frames,
+bool add_points(const Kernels& kernels, int M, const RowPoint* points, int count_points, const ClusterFrames& frames,
                 const std::int32_t* clusters, std::int64_t count, const double* moments, int C, double* out) {
   const std::size_t stride = static_cast<std::size_t>(num_taylor_terms(M)) * static_cast<std::size_t>(C);
   const auto fn = kernels.points[M];
@@ -127,14 +145,8 @@ bool add_points(const Kernels& kernels, int M, const RowPoint* points, int count
       lanes[g].factor[w] = p.factor;
     }
   for (std::int64_t j = 0; j < count; ++j) {
-    const PlaneFrame& f = frames[clusters[j]];
     double frame[12];
-    for (int k = 0; k < 3; ++k) {
-      frame[k] = f.origin[k];
-      frame[3 + k] = f.e1[k];
-      frame[6 + k] = f.e2[k];
-      frame[9 + k] = f.normal[k];
-    }
+    frame_of(frames, clusters[j], frame);
     const double* m = moments + static_cast<std::size_t>(clusters[j]) * stride;
     for (int g = 0; g < groups; ++g)
       if (!fn(lanes[g], frame, m, C, acc[g])) return false;

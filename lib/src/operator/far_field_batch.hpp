@@ -30,6 +30,7 @@
 
 namespace panelrad {
 struct PlaneFrame;
+struct ClusterOrigin;
 }
 
 namespace panelrad::far_field_batch {
@@ -62,6 +63,13 @@ struct PointLanes {
 /// origin A(tau), 3..5 e1, 6..8 e2, 9..11 the normal.
 struct FrameLanes {
   alignas(32) double v[12][kLanes];
+};
+
+/// The frames of the clusters by global id: origin[id].origin, and the axes e1, e2, n_Q of
+/// axes[origin[id].axes] (whose own origin is not read).
+struct ClusterFrames {
+  const ClusterOrigin* origin;
+  const PlaneFrame* axes;
 };
 
 /// The kernels of one instruction set. acc holds an accumulator set (kSetSize running sums):
@@ -109,7 +117,7 @@ double point_total(const double* acc, int c, int w);
 /// kLanes at a time into the lanes of `kernels.points`, every point's sum in the clusters' order,
 /// so each value is independent of the others. False when some P coincides with an A(tau) or is
 /// not finite.
-bool add_points(const Kernels& kernels, int M, const RowPoint* points, int count_points, const PlaneFrame* frames,
+bool add_points(const Kernels& kernels, int M, const RowPoint* points, int count_points, const ClusterFrames& frames,
                 const std::int32_t* clusters, std::int64_t count, const double* moments, int C, double* out);
 
 /// The rho-scaled Taylor coefficients of the single pair (row, frame), T values in c: lane 0 of
@@ -117,11 +125,11 @@ bool add_points(const Kernels& kernels, int M, const RowPoint* points, int count
 /// are computed independently). False when P coincides with A(tau) or is not finite.
 bool pair_coefficients(const Kernels& kernels, int M, const RowPoint& row, const PlaneFrame& frame, double* c);
 
-/// Adds the far field of `count` pairs of a row, pair j with cluster clusters[j] (frame
-/// frames[clusters[j]], moments at moments + clusters[j] T C), coefficients recomputed at degree M
+/// Adds the far field of `count` pairs of a row, pair j with cluster clusters[j] (its frame from
+/// `frames`, moments at moments + clusters[j] T C), coefficients recomputed at degree M
 /// (T = (M+1)(M+2)/2 terms), pair j into lane j mod kLanes of set (j / kLanes) mod 2. False when
 /// some pair's P coincides with its A(tau) or is not finite.
-bool add_recomputed_row(const Kernels& kernels, int M, const RowPoint& row, const PlaneFrame* frames,
+bool add_recomputed_row(const Kernels& kernels, int M, const RowPoint& row, const ClusterFrames& frames,
                         const std::int32_t* clusters, std::int64_t count, const double* moments, int C, RowSums& sums);
 
 }  // namespace panelrad::far_field_batch

@@ -98,13 +98,10 @@ FarFieldCosts far_field_costs(int degree, std::size_t bytes_per_term) {
   return c;
 }
 
-// The coverings (42) of a block of consecutive rows: per row the counts, and the near-field
-// element ids with their integrals (43) and the far-field cluster ids, in row order.
-struct FastOperator::RowBlock {
-  std::vector<std::int64_t> near_count, far_count;
-  std::vector<Index> near_col, far_cluster;
-  std::vector<double> near_val;
-};
+std::size_t FastOperator::RowBlock::bytes() const {
+  return sizeof(RowBlock) + (near_start.size() + far_start.size()) * sizeof(std::uint32_t) +
+         (near_col.size() + far_cluster.size()) * sizeof(Index) + near_val.size() * sizeof(double);
+}
 
 FastOperator::FastOperator(const Collocation& collocation, const FastOptions& options)
     : tree_(collocation.shared_tree()), options_(options) {
@@ -138,8 +135,8 @@ FastOperator::FastOperator(const Collocation& collocation, const FastOptions& op
     report_stage("fast operator: minimal admissible coverings (42) and near field (43), eta " + std::string(eta) +
                  ", M " + std::to_string(options_.degree));
   }
-  std::vector<RowBlock> blocks = cover_rows();
-  store_coverings(blocks);
+  cover_rows();
+  store_coverings();
   stats_.covering_s = clock.seconds();  // covering (42) and near field (43)
   clock.restart();
   report_stage("fast operator: far field (44)-(45), " + std::to_string(stats_.far_pairs) + " (point, cluster) pairs, " +
@@ -190,28 +187,45 @@ void FastOperator::refuse_beyond_memory(const Collocation& collocation, const Ta
 }
 
 // Cluster ids, plane frames about A(tau) and the offsets of each A(tau) in its parent's frame
-// (the shift of centre of (48)).
+// (the shift of centre of (48)). A frame's axes depend on its normal alone (make_plane_frame),
+// and every cluster has its root's normal (uniform subdivision), so the axes are held per root
+// and each cluster holds its origin: the same frames as one PlaneFrame per cluster, at a third of
+// the memory written in setup and read in a product.
 void FastOperator::setup_cluster_frames() {
   const geometry::ClusterTree& tree = *tree_;
   const int L = tree.finest_level();
   unit_scale_ = far_field_unit(tree);
   level_offset_ = level_offsets(tree);
   const Index num_clusters = level_offset_.back();
-  frame_.resize(static_cast<std::size_t>(num_clusters));
+  root_axes_.resize(static_cast<std::size_t>(tree.num_roots()));
+  for (Index r = 0; r < tree.num_roots(); ++r)
+    root_axes_[static_cast<std::size_t>(r)] = make_plane_frame(unit_scale_ * tree.cluster(0, r).centre, tree.cluster(0, r).normal);
+  cluster_origin_.resize(static_cast<std::size_t>(num_clusters));
   to_parent_.resize(static_cast<std::size_t>(num_clusters));
+  bool finite = true;
   for (int l = 0; l <= L; ++l) {
     const Index m = tree.level_size(l);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) reduction(&& : finite)
     for (Index k = 0; k < m; ++k) {
-      const Cluster& c = tree.cluster(l, k);
+      const Vec3 A = unit_scale_ * tree.cluster(l, k).centre;
       const Index id = cluster_id(l, k);
-      frame_[static_cast<std::size_t>(id)] = make_plane_frame(unit_scale_ * c.centre, c.normal);
+      finite = finite && A.allFinite();
+      cluster_origin_[static_cast<std::size_t>(id)] = {{A[0], A[1], A[2]}, static_cast<std::int32_t>(k >> (2 * l))};
       to_parent_[static_cast<std::size_t>(id)] =
-          l > 0 ? frame_[static_cast<std::size_t>(cluster_id(l - 1, k / 4))].local(unit_scale_ * c.centre)
-                : std::array<double, 2>{0.0, 0.0};
+          l > 0 ? frame(cluster_id(l - 1, k / 4)).local(A) : std::array<double, 2>{0.0, 0.0};
     }
   }
+  if (!finite) throw std::invalid_argument("fast operator: a cluster centre A(tau) is not finite in the far field's unit");
 }
+
+PlaneFrame FastOperator::frame(Index id) const {
+  const ClusterOrigin& o = cluster_origin_[static_cast<std::size_t>(id)];
+  PlaneFrame f = root_axes_[static_cast<std::size_t>(o.axes)];
+  f.origin = Vec3(o.origin[0], o.origin[1], o.origin[2]);
+  return f;
+}
+
+far_field_batch::ClusterFrames FastOperator::cluster_frames() const { return {cluster_origin_.data(), root_axes_.data()}; }
 
 // Element moments (48) Int_Delta x^p y^q dS about A(Delta), by shape, and rho(P_i) of every
 // element (all n: the moments of a product and the self-check's vectors need the whole surface).
@@ -239,7 +253,7 @@ void FastOperator::setup_element_data(const Collocation& collocation) {
     const Cluster& root = tree.cluster(0, r);
     double* even = &shape_moments_[static_cast<std::size_t>(L == 0 ? r : 2 * r) * T];
     double* odd = L == 0 ? nullptr : even + T;
-    triangle_moments(frame_[static_cast<std::size_t>(cluster_id(0, r))], unit_scale_ * root.vertex[0],
+    triangle_moments(root_axes_[static_cast<std::size_t>(r)], unit_scale_ * root.vertex[0],
                      unit_scale_ * root.vertex[1], unit_scale_ * root.vertex[2], M, even);
     for (int k = 0; k <= M; ++k)
       for (int q = 0; q <= k; ++q) {
@@ -369,82 +383,116 @@ bool FastOperator::row_computed(Index i) const {
   return rho_[static_cast<std::size_t>(i)] != 0 && (probed_.empty() || probed_[static_cast<std::size_t>(i - row_begin_)]);
 }
 
-// One traversal per row held, in blocks of kRowBlock rows: each block keeps its covering (42)
-// (and the near-field integrals, (43) first sum) locally, so the result is identical for any
-// thread count once the blocks are concatenated in row order (store_coverings).
-std::vector<FastOperator::RowBlock> FastOperator::cover_rows() {
+// One traversal per row held, in blocks of kRowBlock rows (dynamically scheduled): each thread
+// gathers a block's coverings (42) (and the near-field integrals, (43) first sum) in lists of its
+// own, reused from block to block, then writes them once into the block's exact-size arrays. Every
+// block depends on its rows alone, so the lists are identical for any thread count.
+void FastOperator::cover_rows() {
   const geometry::ClusterTree& tree = *tree_;
   const int L = tree.finest_level();
   const NearFieldIntegrator integrate_near(options_.near, tree.mesh_size());
   const Index num_blocks = (row_end_ - row_begin_ + kRowBlock - 1) / kRowBlock;
-  std::vector<RowBlock> blocks(static_cast<std::size_t>(num_blocks));
+  blocks_.clear();
+  blocks_.resize(static_cast<std::size_t>(num_blocks));
   std::size_t skipped = 0, skipped_rows = 0;
   std::size_t visible = 0, hidden = 0, partial = 0, clipped = 0;
   const geometry::Occluders* occluders = options_.occluders.get();
-  bool out_of_memory = false;
-#pragma omp parallel for schedule(dynamic, 1) reduction(+ : skipped, skipped_rows, visible, hidden, partial, clipped)
-  for (Index b = 0; b < num_blocks; ++b) try {
-    RowBlock& blk = blocks[static_cast<std::size_t>(b)];
-    const Index first = row_begin_ + b * kRowBlock, last = std::min(row_end_, first + kRowBlock);
-    blk.near_count.assign(static_cast<std::size_t>(last - first), 0);
-    blk.far_count.assign(static_cast<std::size_t>(last - first), 0);
+  bool out_of_memory = false, too_long = false;
+#pragma omp parallel reduction(+ : skipped, skipped_rows, visible, hidden, partial, clipped)
+  {
+    std::vector<std::int64_t> near_count, far_count;  // the block being built, per row
+    std::vector<Index> near_col, far_cluster;
+    std::vector<double> near_val;
     VisibleCoveringScratch scratch;
-    VisibilityCounts counts;
-    for (Index i = first; i < last; ++i) {
-      const double rho = rho_[static_cast<std::size_t>(i)];
-      if (rho == 0) {  // the row is zero: not computed
-        ++skipped_rows;
+#pragma omp for schedule(dynamic, 1)
+    for (Index b = 0; b < num_blocks; ++b) try {
+      const Index first = row_begin_ + b * kRowBlock, last = std::min(row_end_, first + kRowBlock);
+      near_count.assign(static_cast<std::size_t>(last - first), 0);
+      far_count.assign(static_cast<std::size_t>(last - first), 0);
+      near_col.clear();
+      near_val.clear();
+      far_cluster.clear();
+      VisibilityCounts counts;
+      for (Index i = first; i < last; ++i) {
+        const double rho = rho_[static_cast<std::size_t>(i)];
+        if (rho == 0) {  // the row is zero: not computed
+          ++skipped_rows;
+          continue;
+        }
+        if (!probed_.empty() && !probed_[static_cast<std::size_t>(i - row_begin_)]) continue;  // a probe's row not sampled
+        const Vec3& P = tree.collocation_point(i);
+        const Vec3& nP = tree.cluster(L, i).normal;
+        std::int64_t nn = 0, nf = 0;
+        const auto add_far = [&](int l, Index k) {
+          far_cluster.push_back(cluster_id(l, k));
+          ++nf;
+        };
+        if (occluders) {
+          cover_visible(
+              tree, *occluders, P, nP, tree.plane(L, i), options_.eta, integrate_near, add_far,
+              [&](Index e, double value) {
+                near_col.push_back(e);
+                near_val.push_back(rho * value);  // (43), first sum, over the visible part
+                ++nn;
+              },
+              counts, scratch);
+        } else {
+          const ClusterRef* starts = nullptr;
+          std::int64_t count = 0;
+          if (targets_) {  // the clusters left by P's target cluster of level lt; its coplanar roots
+            const std::size_t a = static_cast<std::size_t>(i >> (2 * (L - targets_->finest_level)));
+            starts = targets_->start.data() + targets_->start_start[a];
+            count = targets_->start_start[a + 1] - targets_->start_start[a];
+            skipped += static_cast<std::size_t>(targets_->coplanar_roots[static_cast<std::size_t>(i >> (2 * L))]);
+          }
+          cover(
+              tree, P, tree.plane(L, i), options_.eta, starts, count, add_far,
+              [&](Index e) {
+                near_col.push_back(e);
+                near_val.push_back(rho * integrate_near(P, nP, tree.cluster(L, e)));  // (43), first sum
+                ++nn;
+              },
+              [&]() { ++skipped; });
+        }
+        near_count[static_cast<std::size_t>(i - first)] = nn;
+        far_count[static_cast<std::size_t>(i - first)] = nf;
+      }
+      skipped += counts.coplanar;
+      visible += counts.visible;
+      hidden += counts.hidden;
+      partial += counts.partial;
+      clipped += counts.clipped;
+      if (std::max(near_col.size(), far_cluster.size()) > std::numeric_limits<std::uint32_t>::max()) {
+#pragma omp atomic write
+        too_long = true;
         continue;
       }
-      if (!probed_.empty() && !probed_[static_cast<std::size_t>(i - row_begin_)]) continue;  // a probe's row not sampled
-      const Vec3& P = tree.collocation_point(i);
-      const Vec3& nP = tree.cluster(L, i).normal;
-      std::int64_t nn = 0, nf = 0;
-      const auto add_far = [&](int l, Index k) {
-        blk.far_cluster.push_back(cluster_id(l, k));
-        ++nf;
-      };
-      if (occluders) {
-        cover_visible(
-            tree, *occluders, P, nP, tree.plane(L, i), options_.eta, integrate_near, add_far,
-            [&](Index e, double value) {
-              blk.near_col.push_back(e);
-              blk.near_val.push_back(rho * value);  // (43), first sum, over the visible part
-              ++nn;
-            },
-            counts, scratch);
-      } else {
-        const ClusterRef* starts = nullptr;
-        std::int64_t count = 0;
-        if (targets_) {  // the clusters left by P's target cluster of level lt; its coplanar roots
-          const std::size_t a = static_cast<std::size_t>(i >> (2 * (L - targets_->finest_level)));
-          starts = targets_->start.data() + targets_->start_start[a];
-          count = targets_->start_start[a + 1] - targets_->start_start[a];
-          skipped += static_cast<std::size_t>(targets_->coplanar_roots[static_cast<std::size_t>(i >> (2 * L))]);
-        }
-        cover(
-            tree, P, tree.plane(L, i), options_.eta, starts, count, add_far,
-            [&](Index e) {
-              blk.near_col.push_back(e);
-              blk.near_val.push_back(rho * integrate_near(P, nP, tree.cluster(L, e)));  // (43), first sum
-              ++nn;
-            },
-            [&]() { ++skipped; });
+      RowBlock& blk = blocks_[static_cast<std::size_t>(b)];
+      const std::size_t rows = near_count.size();
+      blk.near_start.resize(rows + 1);
+      blk.far_start.resize(rows + 1);
+      std::uint32_t near = 0, far = 0;
+      for (std::size_t r = 0; r < rows; ++r) {
+        blk.near_start[r] = near;
+        blk.far_start[r] = far;
+        near += static_cast<std::uint32_t>(near_count[r]);
+        far += static_cast<std::uint32_t>(far_count[r]);
       }
-      blk.near_count[static_cast<std::size_t>(i - first)] = nn;
-      blk.far_count[static_cast<std::size_t>(i - first)] = nf;
-    }
-    skipped += counts.coplanar;
-    visible += counts.visible;
-    hidden += counts.hidden;
-    partial += counts.partial;
-    clipped += counts.clipped;
-  } catch (const std::bad_alloc&) {
+      blk.near_start[rows] = near;
+      blk.far_start[rows] = far;
+      blk.near_col.assign(near_col.begin(), near_col.end());
+      blk.near_val.assign(near_val.begin(), near_val.end());
+      blk.far_cluster.assign(far_cluster.begin(), far_cluster.end());
+    } catch (const std::bad_alloc&) {
 #pragma omp atomic write
-    out_of_memory = true;
+      out_of_memory = true;
+    }
   }
-  if (out_of_memory) {
-    blocks.clear();
+  if (out_of_memory || too_long) {
+    blocks_.clear();
+    if (too_long)
+      throw ResourceError("fast operator for n = " + std::to_string(n_) + rows_note() + ": a block of " +
+                          std::to_string(kRowBlock) + " rows has more than 2^32 near or far pairs; use a larger eta");
     throw ResourceError("fast operator for n = " + std::to_string(n_) + rows_note() +
                         ": out of memory while building the near and far field lists (" + describe_available_memory() +
                         "); use fewer levels or a larger eta");
@@ -456,59 +504,34 @@ std::vector<FastOperator::RowBlock> FastOperator::cover_rows() {
   stats_.hidden_pairs = hidden;
   stats_.partial_pairs = partial;
   stats_.clipped_elements = clipped;
-  return blocks;
 }
 
-// Concatenates the blocks' coverings into the CSR arrays (row starts, then the lists, releasing
-// each block as it is copied) and decides whether the far coefficients are stored: only when
-// they fit, else they are recomputed in each product.
-void FastOperator::store_coverings(std::vector<RowBlock>& blocks) {
-  const std::size_t rows = static_cast<std::size_t>(row_end_ - row_begin_);
-  const Index num_blocks = static_cast<Index>(blocks.size());
-  // Row starts: each block's first entries from the sums over the blocks before it (a short
-  // serial pass over the blocks), then every block's rows in parallel (first touch included).
-  std::vector<std::int64_t> near_first(static_cast<std::size_t>(num_blocks) + 1, 0), far_first(near_first);
-  for (Index b = 0; b < num_blocks; ++b) {
-    const RowBlock& blk = blocks[static_cast<std::size_t>(b)];
-    near_first[static_cast<std::size_t>(b) + 1] = near_first[static_cast<std::size_t>(b)] + static_cast<std::int64_t>(blk.near_col.size());
-    far_first[static_cast<std::size_t>(b) + 1] = far_first[static_cast<std::size_t>(b)] + static_cast<std::int64_t>(blk.far_cluster.size());
+// The blocks' first far pairs among all (a short serial pass over the blocks), the pair counts,
+// and whether the far coefficients are stored: only when they fit and storing pays for the
+// products expected, else they are recomputed in each product.
+void FastOperator::store_coverings() {
+  std::int64_t near = 0, far = 0;
+  for (RowBlock& blk : blocks_) {
+    blk.far_first = far;
+    near += static_cast<std::int64_t>(blk.near_col.size());
+    far += static_cast<std::int64_t>(blk.far_cluster.size());
   }
-  near_start_.resize(rows + 1);
-  far_start_.resize(rows + 1);
-  near_start_[rows] = near_first.back();
-  far_start_[rows] = far_first.back();
-#pragma omp parallel for schedule(static)
-  for (Index b = 0; b < num_blocks; ++b) {
-    const RowBlock& blk = blocks[static_cast<std::size_t>(b)];
-    std::int64_t near = near_first[static_cast<std::size_t>(b)], far = far_first[static_cast<std::size_t>(b)];
-    for (std::size_t r = 0; r < blk.near_count.size(); ++r) {
-      const std::size_t i = static_cast<std::size_t>(b * kRowBlock) + r;
-      near_start_[i] = near;
-      far_start_[i] = far;
-      near += blk.near_count[r];
-      far += blk.far_count[r];
-    }
-  }
-  stats_.near_pairs = static_cast<std::size_t>(near_start_.back());
-  stats_.far_pairs = static_cast<std::size_t>(far_start_.back());
+  stats_.near_pairs = static_cast<std::size_t>(near);
+  stats_.far_pairs = static_cast<std::size_t>(far);
   const std::size_t far_coef_bytes = stats_.far_pairs * static_cast<std::size_t>(terms_) * coefficient_bytes();
   const std::size_t avail = available_memory_bytes();
   const std::size_t limit = options_.far_storage_limit ? options_.far_storage_limit : avail / 2;
   stats_.far_stored = far_coef_bytes <= limit &&
                       (options_.expected_products <= 0 ||
                        far_field_costs(options_.degree, coefficient_bytes()).store_pays(options_.expected_products));
-  near_col_.resize(stats_.near_pairs);
-  near_val_.resize(stats_.near_pairs);
-  far_cluster_.resize(stats_.far_pairs);
-#pragma omp parallel for schedule(static)
-  for (Index b = 0; b < num_blocks; ++b) {
-    RowBlock& blk = blocks[static_cast<std::size_t>(b)];
-    const std::size_t i0 = static_cast<std::size_t>(b * kRowBlock);
-    std::copy(blk.near_col.begin(), blk.near_col.end(), near_col_.begin() + near_start_[i0]);
-    std::copy(blk.near_val.begin(), blk.near_val.end(), near_val_.begin() + near_start_[i0]);
-    std::copy(blk.far_cluster.begin(), blk.far_cluster.end(), far_cluster_.begin() + far_start_[i0]);
-    blk = RowBlock{};  // release as we go
-  }
+}
+
+FastOperator::RowLists FastOperator::row_lists(std::size_t r) const {
+  const RowBlock& blk = blocks_[r / static_cast<std::size_t>(kRowBlock)];
+  const std::size_t k = r % static_cast<std::size_t>(kRowBlock);
+  const std::uint32_t near = blk.near_start[k], far = blk.far_start[k];
+  return {blk.near_col.data() + near,  blk.near_val.data() + near, blk.near_start[k + 1] - near,
+          blk.far_cluster.data() + far, blk.far_start[k + 1] - far, blk.far_first + far};
 }
 
 // The rho-scaled Taylor coefficients (44)-(45) of every far pair, when they are to be stored
@@ -530,10 +553,11 @@ void FastOperator::setup_far_coefficients() {
   {
     std::vector<double> c(T);
 #pragma omp for schedule(dynamic, 64)
-    for (Index r = 0; r < rows; ++r)
-      for (std::int64_t j = far_start_[static_cast<std::size_t>(r)]; j < far_start_[static_cast<std::size_t>(r) + 1]; ++j) {
-        const Index cluster = far_cluster_[static_cast<std::size_t>(j)];
-        const std::size_t at = static_cast<std::size_t>(j) * T;
+    for (Index r = 0; r < rows; ++r) {
+      const RowLists row = row_lists(static_cast<std::size_t>(r));
+      for (std::int64_t j = 0; j < row.far_count; ++j) {
+        const Index cluster = row.far_cluster[j];
+        const std::size_t at = static_cast<std::size_t>(row.far_first + j) * T;
         if (!single) {
           far_coefficients(row_begin_ + r, cluster, &far_coef_[at]);
           continue;
@@ -541,14 +565,17 @@ void FastOperator::setup_far_coefficients() {
         far_coefficients(row_begin_ + r, cluster, c.data());
         for (std::size_t t = 0; t < T; ++t) far_coef_single_[at + t] = static_cast<float>(c[t]);
       }
+    }
   }
 }
 
 std::size_t FastOperator::held_bytes() const {
   const std::size_t num_clusters = static_cast<std::size_t>(level_offset_.back());
-  return near_col_.size() * sizeof(Index) + near_val_.size() * sizeof(double) + far_cluster_.size() * sizeof(Index) +
-         far_coef_.bytes() + far_coef_single_.bytes() + (near_start_.size() + far_start_.size()) * sizeof(std::int64_t) +
-         frame_.size() * sizeof(PlaneFrame) + to_parent_.size() * sizeof(to_parent_[0]) +
+  std::size_t lists = 0;
+  for (const RowBlock& blk : blocks_) lists += blk.bytes();
+  return lists + far_coef_.bytes() + far_coef_single_.bytes() +
+         cluster_origin_.size() * sizeof(ClusterOrigin) + root_axes_.size() * sizeof(PlaneFrame) +
+         to_parent_.size() * sizeof(to_parent_[0]) +
          shape_moments_.size() * sizeof(double) + rho_.size() * sizeof(double) +
          num_clusters * static_cast<std::size_t>(terms_) * sizeof(double) /* moments per product */ +
          (targets_ ? targets_->bytes() + local_slot_.size() * sizeof(std::int64_t) + active_targets_.size() * sizeof(Index) +
@@ -578,8 +605,10 @@ FastOperator::MemoryEstimate FastOperator::estimate_memory(const Collocation& co
   std::size_t clusters = 0;
   for (int l = 0; l <= L; ++l) clusters += static_cast<std::size_t>(tree.level_size(l));
   const Index samples = std::min<Index>(m, 256);
-  std::size_t near = 0, far = 0, sampled = 0, rows = 0;
+  std::size_t near = 0, far = 0, sampled = 0, rows = 0;  // integer sums: the same for any thread count
+#pragma omp parallel for schedule(static) reduction(+ : rows)
   for (Index i = begin; i < end; ++i) rows += collocation.reflectivity()[i] != 0;
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : near, far, sampled)
   for (Index s = 0; s < samples; ++s) {
     const Index i = begin + static_cast<Index>((static_cast<std::int64_t>(s) * m + m / 2) / samples);
     if (collocation.reflectivity()[i] == 0) continue;
@@ -622,8 +651,10 @@ std::size_t FastOperator::fixed_bytes(std::size_t n, std::size_t clusters, int d
   // n = n0), n0 = 4 n - 3 clusters since clusters = n0 (4^(L+1) - 1) / 3 and n = n0 4^L.
   const std::size_t roots = 4 * n - 3 * clusters;
   const std::size_t shapes = std::min(n, 2 * roots);
-  return clusters * (sizeof(PlaneFrame) + 2 * sizeof(double) + T * sizeof(double)) + n * sizeof(double) +
-         shapes * T * sizeof(double) + rows * 2 * sizeof(std::int64_t);
+  return clusters * (sizeof(ClusterOrigin) + 2 * sizeof(double) + T * sizeof(double)) + roots * sizeof(PlaneFrame) +
+         n * sizeof(double) +
+         shapes * T * sizeof(double) + rows * 2 * sizeof(std::uint32_t) +
+         (rows + static_cast<std::size_t>(kRowBlock) - 1) / static_cast<std::size_t>(kRowBlock) * (sizeof(RowBlock) + 2 * sizeof(std::uint32_t));
 }
 
 std::pair<int, Index> FastOperator::cluster_of_id(Index id) const {
@@ -643,7 +674,7 @@ far_field_batch::RowPoint FastOperator::far_row_point(Index i) const {
 
 void FastOperator::far_coefficients(Index i, Index cluster, double* c) const {
   if (!far_field_batch::pair_coefficients(far_field_batch::kernels(), options_.degree, far_row_point(i),
-                                          frame_[static_cast<std::size_t>(cluster)], c))
+                                          frame(cluster), c))
     throw std::invalid_argument("FastOperator: collocation point " + std::to_string(i) +
                                 " coincides with the centre A(tau) of far cluster " + std::to_string(cluster) +
                                 " or is not finite");
@@ -706,16 +737,15 @@ void FastOperator::evaluate_local_expansions(const double* moments, int C, const
     const Index id = targets[static_cast<std::size_t>(t)];
     if (targets_->sources(id) == 0) continue;  // inherits its parent's expansion only
     const auto [l, k] = cluster_of_id(id);
-    const PlaneFrame& frame = frame_[static_cast<std::size_t>(id)];
     const Vec3& normal = tree_->cluster(l, k).normal;
     Vec3 points[num_local_points(kMaxLocalDegree)];
-    targets_->box[static_cast<std::size_t>(id)].points(frame, d, points);
+    targets_->box[static_cast<std::size_t>(id)].points(frame(id), d, points);
     far_field_batch::RowPoint rows[num_local_points(kMaxLocalDegree)];
     for (int q = 0; q < N; ++q)
       rows[q] = {{points[q][0], points[q][1], points[q][2]}, {normal[0], normal[1], normal[2]}, 1.0 / pi};
     const std::int64_t first = targets_->source_start[static_cast<std::size_t>(id)];
     double* out = values.data() + static_cast<std::size_t>(local_slot_[static_cast<std::size_t>(id)]) * table;
-    if (!far_field_batch::add_points(kernels, options_.degree, rows, N, frame_.data(), targets_->source.data() + first,
+    if (!far_field_batch::add_points(kernels, options_.degree, rows, N, cluster_frames(), targets_->source.data() + first,
                                      targets_->sources(id), moments, C, out)) {
 #pragma omp atomic write
       failed = true;
@@ -738,11 +768,10 @@ void FastOperator::evaluate_local_expansions(const double* moments, int C, const
       const Index parent = cluster_id(l - 1, (id - cluster_id(l, 0)) / 4);
       const std::int64_t parent_slot = local_slot_[static_cast<std::size_t>(parent)];
       if (parent_slot < 0) continue;
-      const PlaneFrame& frame = frame_[static_cast<std::size_t>(id)];
       Vec3 points[num_local_points(kMaxLocalDegree)];
-      targets_->box[static_cast<std::size_t>(id)].points(frame, d, points);
+      targets_->box[static_cast<std::size_t>(id)].points(frame(id), d, points);
       const LocalBox& parent_box = targets_->box[static_cast<std::size_t>(parent)];
-      const PlaneFrame& parent_frame = frame_[static_cast<std::size_t>(parent)];
+      const PlaneFrame parent_frame = frame(parent);
       const double* from = values.data() + static_cast<std::size_t>(parent_slot) * table;
       double* out = values.data() + static_cast<std::size_t>(local_slot_[static_cast<std::size_t>(id)]) * table;
       for (int q = 0; q < N; ++q) {
@@ -765,7 +794,7 @@ void FastOperator::add_local_expansions(Index i, const double* values, double* s
   const std::int64_t slot = local_slot_[static_cast<std::size_t>(id)];
   if (slot < 0) return;
   double part[C];
-  targets_->box[static_cast<std::size_t>(id)].interpolate(frame_[static_cast<std::size_t>(id)], d,
+  targets_->box[static_cast<std::size_t>(id)].interpolate(frame(id), d,
                                                            values + static_cast<std::size_t>(slot) * table, C, P, part);
   for (int c = 0; c < C; ++c) sum[c] += part[c];
 }
@@ -810,18 +839,19 @@ void FastOperator::apply_row_columns(Index i, const double* v, const double* mom
     const double rho = rho_[static_cast<std::size_t>(i)];
     for (int c = 0; c < C; ++c) local[c] *= rho;
   }
-  for (std::int64_t j = near_start_[r]; j < near_start_[r + 1]; ++j) {
-    const double k = near_val_[static_cast<std::size_t>(j)];
-    const double* vj = v + static_cast<std::size_t>(near_col_[static_cast<std::size_t>(j)]) * C;
+  const RowLists row = row_lists(r);
+  for (std::int64_t j = 0; j < row.near_count; ++j) {
+    const double k = row.near_val[j];
+    const double* vj = v + static_cast<std::size_t>(row.near_col[j]) * C;
     for (int c = 0; c < C; ++c) near[c] += k * vj[c];
   }
-  const std::int64_t first = far_start_[r], count = far_start_[r + 1] - first;
-  const Index* clusters = far_cluster_.data() + first;
+  const std::int64_t first = row.far_first, count = row.far_count;
+  const Index* clusters = row.far_cluster;
   const far_field_batch::Kernels& kernels = far_field_batch::kernels();
   const std::size_t at = static_cast<std::size_t>(first) * static_cast<std::size_t>(terms_);  // pair's coefficients
   far_field_batch::RowSums sums;
   if (!stats_.far_stored) {
-    if (!far_field_batch::add_recomputed_row(kernels, options_.degree, far_row_point(i), frame_.data(), clusters,
+    if (!far_field_batch::add_recomputed_row(kernels, options_.degree, far_row_point(i), cluster_frames(), clusters,
                                              count, moments, C, sums))
       throw std::invalid_argument("FastOperator: collocation point " + std::to_string(i) +
                                   " coincides with the centre A(tau) of a far cluster or is not finite");
@@ -1164,13 +1194,15 @@ std::vector<Index> FastOperator::far_clusters(Index i) const {
     const std::int64_t first = targets_->source_start[static_cast<std::size_t>(id)];
     out.insert(out.end(), targets_->source.begin() + first, targets_->source.begin() + first + targets_->sources(id));
   }
-  out.insert(out.end(), far_cluster_.begin() + far_start_[r], far_cluster_.begin() + far_start_[r + 1]);
+  const RowLists row = row_lists(r);
+  out.insert(out.end(), row.far_cluster, row.far_cluster + row.far_count);
   return out;
 }
 
 std::vector<Index> FastOperator::near_elements(Index i) const {
   const std::size_t r = local_row(i, "near_elements");
-  return {near_col_.begin() + near_start_[r], near_col_.begin() + near_start_[r + 1]};
+  const RowLists row = row_lists(r);
+  return {row.near_col, row.near_col + row.near_count};
 }
 
 }  // namespace panelrad

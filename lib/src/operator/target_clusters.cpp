@@ -56,7 +56,7 @@ TargetClusters build_target_clusters(const geometry::ClusterTree& tree, const Pl
     const double inv_scale = 1.0 / unit_scale;  // a power of two: exact
     bool failed = false;
     std::string failure;
-#pragma omp parallel for schedule(dynamic, 16)
+#pragma omp parallel for schedule(dynamic, 1)
     for (Index k = 0; k < m; ++k) try {
       const Cluster& sigma = tree.cluster(l, k);
       const Index id = id_of(l, k);
@@ -107,14 +107,17 @@ TargetClusters build_target_clusters(const geometry::ClusterTree& tree, const Pl
     }
     previous.swap(current);
   }
-  // CSR of the sources (by target id) and of the starts (by cluster of level lt).
+  // CSR of the sources (by target id) and of the starts (by cluster of level lt): the starts by
+  // a serial prefix sum, the lists copied (and the per-target ones released) in parallel.
   out.source_start.assign(static_cast<std::size_t>(targets) + 1, 0);
   for (Index id = 0; id < targets; ++id)
     out.source_start[static_cast<std::size_t>(id) + 1] =
         out.source_start[static_cast<std::size_t>(id)] + static_cast<std::int64_t>(sources[static_cast<std::size_t>(id)].size());
-  out.source.reserve(static_cast<std::size_t>(out.source_start.back()));
-  for (auto& s : sources) {
-    out.source.insert(out.source.end(), s.begin(), s.end());
+  out.source.resize(static_cast<std::size_t>(out.source_start.back()));
+#pragma omp parallel for schedule(static)
+  for (Index id = 0; id < targets; ++id) {
+    std::vector<Index>& s = sources[static_cast<std::size_t>(id)];
+    std::copy(s.begin(), s.end(), out.source.begin() + out.source_start[static_cast<std::size_t>(id)]);
     std::vector<Index>().swap(s);
   }
   const Index m = tree.level_size(lt);
@@ -122,9 +125,12 @@ TargetClusters build_target_clusters(const geometry::ClusterTree& tree, const Pl
   for (Index k = 0; k < m; ++k)
     out.start_start[static_cast<std::size_t>(k) + 1] =
         out.start_start[static_cast<std::size_t>(k)] + static_cast<std::int64_t>(previous[static_cast<std::size_t>(k)].pass.size());
-  out.start.reserve(static_cast<std::size_t>(out.start_start.back()));
-  for (const TargetLists& lists : previous)
-    out.start.insert(out.start.end(), lists.pass.begin(), lists.pass.end());
+  out.start.resize(static_cast<std::size_t>(out.start_start.back()));
+#pragma omp parallel for schedule(static)
+  for (Index k = 0; k < m; ++k) {
+    const std::vector<Item>& pass = previous[static_cast<std::size_t>(k)].pass;
+    std::copy(pass.begin(), pass.end(), out.start.begin() + out.start_start[static_cast<std::size_t>(k)]);
+  }
   return out;
 }
 

@@ -28,12 +28,17 @@ long long read_proc_kb(const char* file, const std::string& key) {
   return -1;
 }
 
+// At most max_bytes of a file, read in pieces of 16 KiB: the /proc and cgroup files are a few KiB,
+// and a buffer of max_bytes filled up front would cost its page faults on every call.
 std::string read_text(const std::string& file, std::size_t max_bytes = 1 << 20) {
   std::ifstream in(file);
   if (!in) return {};
-  std::string text(max_bytes, '\0');
-  in.read(text.data(), static_cast<std::streamsize>(max_bytes));
-  text.resize(static_cast<std::size_t>(in.gcount()));
+  std::string text;
+  char piece[1 << 14];
+  while (text.size() < max_bytes && in) {
+    in.read(piece, static_cast<std::streamsize>(std::min(sizeof piece, max_bytes - text.size())));
+    text.append(piece, static_cast<std::size_t>(in.gcount()));
+  }
   return text;
 }
 

@@ -34,6 +34,7 @@ namespace panelrad {
 
 namespace far_field_batch {
 struct RowPoint;
+struct ClusterFrames;
 }
 struct TargetClusters;
 
@@ -260,7 +261,28 @@ class FastOperator final : public RadiosityOperator {
   std::pair<int, geometry::Index> cluster_of_id(geometry::Index id) const;
 
  private:
-  struct RowBlock;  // the coverings of a block of rows, while they are built
+  // The coverings (42) of a block of kRowBlock consecutive rows held, as they are stored: per row
+  // the starts (within the block) of its near-field element ids with their integrals rho_i/pi Int G
+  // (43) and of its far-field cluster ids, and the index among all far pairs of the block's first
+  // one (where its stored coefficients start). Each block is built whole by one thread and kept:
+  // the lists are never concatenated, so they are written once and held once.
+  struct RowBlock {
+    std::int64_t far_first = 0;
+    UninitializedVector<std::uint32_t> near_start, far_start;  // the block's rows + 1 each
+    UninitializedVector<geometry::Index> near_col, far_cluster;
+    UninitializedVector<double> near_val;
+    std::size_t bytes() const;
+  };
+  // Row r's lists (r counted from the first row held).
+  struct RowLists {
+    const geometry::Index* near_col;
+    const double* near_val;
+    std::int64_t near_count;
+    const geometry::Index* far_cluster;
+    std::int64_t far_count;
+    std::int64_t far_first;  // the index of its first far pair among all
+  };
+  RowLists row_lists(std::size_t r) const;
 
   /// The target clusters' finest level lt (-1: none), degree d and eta_t (target_plan).
   struct TargetPlan {
@@ -281,8 +303,8 @@ class FastOperator final : public RadiosityOperator {
   std::string rows_note() const;
   void setup_cluster_frames();
   void setup_element_data(const Collocation& collocation);
-  std::vector<RowBlock> cover_rows();
-  void store_coverings(std::vector<RowBlock>& blocks);
+  void cover_rows();
+  void store_coverings();
   void setup_far_coefficients();
   void setup_target_clusters(std::shared_ptr<TargetClusters> targets);
   bool row_computed(geometry::Index i) const;
@@ -310,6 +332,9 @@ class FastOperator final : public RadiosityOperator {
   void far_coefficients(geometry::Index i, geometry::Index cluster, double* c) const;
   /// Row i's side of its far pairs (P_i in the far field's unit, n_P, rho_i/pi).
   far_field_batch::RowPoint far_row_point(geometry::Index i) const;
+  /// The frame of cluster `id` (global id): its origin A(tau), its root's axes.
+  PlaneFrame frame(geometry::Index id) const;
+  far_field_batch::ClusterFrames cluster_frames() const;
   double apply_row(geometry::Index i, const Eigen::VectorXd& v, const std::vector<double>& moments,
                    const std::vector<double>& local_values, double* scratch) const;
   /// Row i of the product for C vectors: out[c] = (K_n v_c)_i, each from its own moments, every
@@ -327,26 +352,19 @@ class FastOperator final : public RadiosityOperator {
   // The per-cluster and per-row arrays are sized once and filled by parallel loops (first touch).
   UninitializedVector<double> rho_;               // rho(P_i), all n rows (P_i and n_P are the tree's)
   double unit_scale_ = 1;                         // far field in units of 2^k ~ diameter (exact scaling)
-  UninitializedVector<PlaneFrame> frame_;         // per cluster: origin A(tau) (scaled), axes of its plane
+  UninitializedVector<ClusterOrigin> cluster_origin_;  // per cluster: A(tau) (scaled), its root's axes
+  std::vector<PlaneFrame> root_axes_;             // per root: its frame (the axes of all its clusters)
   UninitializedVector<std::array<double, 2>> to_parent_;  // per cluster: its A in parent's frame (roots: 0)
   // Element moments Int_Delta x^p y^q dS about A(Delta) by shape: per root, the even and the odd
   // elements' (setup_element_data), 2 n0 T values.
   std::vector<double> shape_moments_;
-  // Near field (CSR over the rows held, row i at i - begin): element index and rho_i/pi Int G.
-  // CSR rather than Eigen::SparseMatrix<double, RowMajor, StorageIndex>, measured on the cube,
-  // eta 0.2 (near pairs 5.6 a row at n = 49152, 2.8 at 196608, 1.4 at 786432): a 64-bit
-  // StorageIndex takes 16 bytes a pair against 12 (10.5 MB against 8.3 MB at n = 196608), at no
-  // gain in speed; a 32-bit one saves only the 4 bytes a row of the row starts (0.8 MB), bounds
-  // the pairs by 2^31, and is slower on one thread: 50 near-field products at n = 196608 took
-  // 0.063 s against 0.061 s on one thread, 0.033 s against 0.036 s on two (49152: 0.023 / 0.021 s,
-  // 0.012 / 0.013 s). Here the near sum is fused with the far sum of the same row; it is < 1% of
-  // a product (0.44 s at n = 196608, two threads).
-  UninitializedVector<std::int64_t> near_start_;
-  UninitializedVector<geometry::Index> near_col_;
-  UninitializedVector<double> near_val_;
-  // Far field (CSR over the rows held): cluster id and, when stored, the rho-scaled Taylor coefficients.
-  UninitializedVector<std::int64_t> far_start_;
-  UninitializedVector<geometry::Index> far_cluster_;
+  // Near and far field lists by blocks of rows (RowBlock): CSR within each block, with 32-bit
+  // starts (4 bytes a row each, the block's first pair held once); element index and rho_i/pi Int G,
+  // cluster id (and, when stored, the rho-scaled Taylor coefficients in far_coef_). CSR rather than
+  // Eigen::SparseMatrix<double, RowMajor, StorageIndex>, measured on the cube, eta 0.2 (near pairs
+  // 5.6 a row at n = 49152): a 64-bit StorageIndex takes 16 bytes a pair against 12, at no gain in
+  // speed. The near sum is fused with the far sum of the same row; it is < 1% of a product.
+  std::vector<RowBlock> blocks_;
   LargeBuffer far_coef_;                         // uninitialized, huge pages, filled in parallel
   LargeArray<float> far_coef_single_;            // the same, single_precision_coefficients
   std::vector<char> probed_;                     // probe_samples > 0: per row held, covered or not
