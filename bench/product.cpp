@@ -124,7 +124,7 @@ int main(int argc, char** argv) {
       }
       const FastSelfCheck check = op.self_check(rows);
       const FastStatistics& s = op.statistics();
-      std::printf("%5.2f %3d %6s %12zu %9.3f %10.4f %10.4f %10.1f %9.0f ", eta, degree,
+      std::printf("%5.2f %3d %6s %12zu %9.4f %10.4f %10.4f %10.1f %9.0f ", eta, degree,
                   !s.far_stored ? "none" : o.single_precision_coefficients ? "float" : "double", s.far_pairs, setup,
                   median(single), median(block), static_cast<double>(op.bytes()) / 1e6,
                   static_cast<double>(op.bytes()) / static_cast<double>(col.size()));

@@ -203,9 +203,10 @@ void FastOperator::setup_cluster_frames() {
   cluster_origin_.resize(static_cast<std::size_t>(num_clusters));
   to_parent_.resize(static_cast<std::size_t>(num_clusters));
   bool finite = true;
-  for (int l = 0; l <= L; ++l) {
+#pragma omp parallel reduction(&& : finite)
+  for (int l = 0; l <= L; ++l) {  // level by level (a child's offset reads its parent's origin), one team
     const Index m = tree.level_size(l);
-#pragma omp parallel for schedule(static) reduction(&& : finite)
+#pragma omp for schedule(static)
     for (Index k = 0; k < m; ++k) {
       const Vec3 A = unit_scale_ * tree.cluster(l, k).centre;
       const Index id = cluster_id(l, k);
@@ -519,8 +520,7 @@ void FastOperator::store_coverings() {
   stats_.near_pairs = static_cast<std::size_t>(near);
   stats_.far_pairs = static_cast<std::size_t>(far);
   const std::size_t far_coef_bytes = stats_.far_pairs * static_cast<std::size_t>(terms_) * coefficient_bytes();
-  const std::size_t avail = available_memory_bytes();
-  const std::size_t limit = options_.far_storage_limit ? options_.far_storage_limit : avail / 2;
+  const std::size_t limit = options_.far_storage_limit ? options_.far_storage_limit : available_memory_bytes() / 2;
   stats_.far_stored = far_coef_bytes <= limit &&
                       (options_.expected_products <= 0 ||
                        far_field_costs(options_.degree, coefficient_bytes()).store_pays(options_.expected_products));
