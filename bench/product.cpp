@@ -89,7 +89,7 @@ int main(int argc, char** argv) {
     std::printf("fast product on the cube, level %d, n = %d, threads %d (collocation and E: %.1f s)\n", level,
                 static_cast<int>(col.size()), max_threads(), clock.seconds());
     std::printf("%5s %3s %6s %12s %9s %10s %10s %10s %9s  %s\n", "eta", "M", "store", "far pairs", "setup s",
-                "product s", "3 cols s", "MB", "B/elem", "error per self-check vector (max over vectors)");
+                "product s", "3 cols s", "MB", "B/elem", "error per self-check vector (max over vectors, self-check s)");
     for (const auto& [eta, degree] : settings) {
       FastOptions o;
       o.eta = eta;
@@ -129,8 +129,8 @@ int main(int argc, char** argv) {
                   median(single), median(block), static_cast<double>(op.bytes()) / 1e6,
                   static_cast<double>(op.bytes()) / static_cast<double>(col.size()));
       for (const SelfCheckVector& c : check.vectors) std::printf(" %.2e", c.relative_error);
-      std::printf("  (%.2e)  setup: geometry %.3f, targets %.3f, coverings %.3f, far %.3f s", check.relative_error,
-                  s.geometry_s, s.targets_s, s.covering_s, s.far_s);
+      std::printf("  (%.2e, %.3f s)  setup: geometry %.3f, targets %.3f, coverings %.3f, far %.3f s",
+                  check.relative_error, check.seconds, s.geometry_s, s.targets_s, s.covering_s, s.far_s);
       if (s.target_level >= 0)
         std::printf("; local: levels 0..%d, d %d, %zu targets, %zu pairs for %zu point pairs\n", s.target_level,
                     s.local_degree, s.target_clusters, s.target_pairs, s.target_point_pairs);

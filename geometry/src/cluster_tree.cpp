@@ -272,7 +272,7 @@ void make_root(Cluster& c, const TriangleMesh& mesh, Index k, const std::string&
 
 /// Level l+1 from level l (39)-(40): children 4k .. 4k+3 of triangle k are its midpoint
 /// subdivision, with the parent's plane, facet and a quarter of its area.
-void subdivide_level(const std::vector<Cluster>& parents, std::vector<Cluster>& children, int child_level) {
+void subdivide_level(const UninitializedVector<Cluster>& parents, UninitializedVector<Cluster>& children, int child_level) {
   children.resize(parents.size() * 4);
   const std::string where = "level " + std::to_string(child_level);
   parallel_for(static_cast<Index>(parents.size()), [&](Index k) {
@@ -291,9 +291,9 @@ void subdivide_level(const std::vector<Cluster>& parents, std::vector<Cluster>& 
 }
 
 /// Collocation points P_k (22): the centroids (a + b + c) / 3 of the elements, exact and rounded once.
-std::vector<Vec3> element_centroids(const std::vector<Cluster>& leaves) {
+UninitializedVector<Vec3> element_centroids(const UninitializedVector<Cluster>& leaves) {
   const Index n = static_cast<Index>(leaves.size());
-  std::vector<Vec3> centroid(static_cast<std::size_t>(n));
+  UninitializedVector<Vec3> centroid(static_cast<std::size_t>(n));
   parallel_for(n, [&](Index k) {
     const Cluster& e = leaves[static_cast<std::size_t>(k)];
     const Mpzf three(3);
@@ -306,7 +306,7 @@ std::vector<Vec3> element_centroids(const std::vector<Cluster>& leaves) {
 }
 
 /// Mesh size h: the longest edge of the elements (section 3).
-double longest_edge(const std::vector<Cluster>& leaves) {
+double longest_edge(const UninitializedVector<Cluster>& leaves) {
   const Index n = static_cast<Index>(leaves.size());
   double h = 0;
 #pragma omp parallel for schedule(static) reduction(max : h)
@@ -333,14 +333,14 @@ std::size_t ClusterTree::estimate_bytes(Index n0, int finest_level) {
   for (int l = 0; l <= finest_level; ++l, level_size *= 4) clusters += level_size;
   const long double elements = level_size / 4;
   const long double bytes = clusters * sizeof(Cluster) + elements * sizeof(Vec3) +
-                            (finest_level + 1.0L) * sizeof(std::vector<Cluster>) + sizeof(ClusterTree);
+                            (finest_level + 1.0L) * sizeof(UninitializedVector<Cluster>) + sizeof(ClusterTree);
   if (bytes >= static_cast<long double>(std::numeric_limits<std::size_t>::max()))
     return std::numeric_limits<std::size_t>::max();
   return static_cast<std::size_t>(bytes);
 }
 
 std::size_t ClusterTree::bytes() const {
-  std::size_t total = sizeof(ClusterTree) + levels_.capacity() * sizeof(std::vector<Cluster>);
+  std::size_t total = sizeof(ClusterTree) + levels_.capacity() * sizeof(UninitializedVector<Cluster>);
   for (const auto& level : levels_) total += level.capacity() * sizeof(Cluster);
   return total + centroid_.capacity() * sizeof(Vec3) + root_plane_.capacity() * sizeof(Index);
 }
@@ -361,7 +361,7 @@ ClusterTree::ClusterTree(const TriangleMesh& mesh, int finest_level, std::size_t
   levels_.resize(static_cast<std::size_t>(finest_level) + 1);
 
   // --- level 0: the mesh's triangles, in mesh order ----------------------------------------------
-  std::vector<Cluster>& roots = levels_[0];
+  UninitializedVector<Cluster>& roots = levels_[0];
   roots.resize(static_cast<std::size_t>(n0));
   parallel_for(n0, [&](Index k) { make_root(roots[static_cast<std::size_t>(k)], mesh, k, name); });
 

@@ -1,5 +1,6 @@
 // The element moments (48) of the fast operator, held by shape (two sets per root triangle: every
-// element of uniform midpoint subdivision is its root scaled by +-2^-L), against the closed form
+// element of uniform midpoint subdivision is its root scaled by +-2^-L), and the moments of the
+// elements of the next-to-finest level's clusters about their centres, against the closed form
 // of each element's own stored corners (triangle_moments).
 //
 // Tolerance. The shapes' moments are exact scalings of the root's; an element's corners are
@@ -27,15 +28,31 @@ namespace {
 
 using namespace panelrad;
 
+// The fast operator (eta 0.5, M = degree) of a built-in scene at a level, with the far field's unit.
+struct Setup {
+  Setup(const std::string& builtin, int level, int degree)
+      : scene(panelrad::testing::validated_builtin(builtin)),
+        col(scene, level),
+        op(col, options(degree)),
+        unit(FastOperator::far_field_unit(col.tree())) {}
+  static FastOptions options(int degree) {
+    FastOptions o;
+    o.eta = 0.5;
+    o.degree = degree;
+    return o;
+  }
+  Scene scene;
+  Collocation col;
+  FastOperator op;
+  double unit;
+};
+
 void expect_moments_of_the_elements(const std::string& builtin, int level, int degree) {
-  const Scene scene(panelrad::testing::validated_builtin(builtin));
-  const Collocation col(scene, level);
-  FastOptions o;
-  o.eta = 0.5;
-  o.degree = degree;
-  const FastOperator op(col, o);
+  const Setup setup(builtin, level, degree);
+  const Collocation& col = setup.col;
+  const FastOperator& op = setup.op;
   const geometry::ClusterTree& tree = col.tree();
-  const double unit = FastOperator::far_field_unit(tree);
+  const double unit = setup.unit;
   const int T = num_taylor_terms(degree);
   std::vector<double> exact(static_cast<std::size_t>(T));
   for (Index e = 0; e < col.size(); ++e) {
@@ -63,6 +80,56 @@ TEST(ElementMoments, PrismElementsUpToDegreeTwelve) {
   // Triangles of several shapes (the caps' fans and the sides' rectangles), odd and even degrees.
   for (const int degree : {1, 7, 12}) expect_moments_of_the_elements("prism:5", 2, degree);
   expect_moments_of_the_elements("tetrahedron", 4, 5);
+}
+
+// The moments of the four elements of each cluster of level L - 1 about that cluster's A(tau)
+// (child_shape_moments: the element moments shifted once per placement class), against the closed
+// form of each element's stored corners in the cluster's own frame. Tolerance as above, with R
+// the cluster's radius: the class's offsets differ from a cluster's own by the rounding of the
+// centres, 2^-53 of the coordinates, i.e. 2^(L-54) R; at L <= 7, k <= 12 that is below 3e-13
+// R^(k+2). A wrong class (the labels of the corners turned, a wrong sign) is off by O(1) R^(k+2).
+void expect_moments_of_the_children(const std::string& builtin, int level, int degree) {
+  const Setup setup(builtin, level, degree);
+  const geometry::ClusterTree& tree = setup.col.tree();
+  const double unit = setup.unit;
+  std::vector<double> exact(static_cast<std::size_t>(num_taylor_terms(degree)));
+  const std::size_t T = exact.size();
+  for (Index k = 0; k < tree.level_size(level - 1); ++k) {
+    const geometry::Cluster& parent = tree.cluster(level - 1, k);
+    const PlaneFrame frame = make_plane_frame(unit * parent.centre, parent.normal);
+    const auto held = setup.op.child_shape_moments(k);
+    ASSERT_EQ(held.size(), 4 * T);
+    const double R = unit * parent.radius;
+    for (Index c = 0; c < 4; ++c) {
+      const geometry::Cluster& e = tree.elements()[static_cast<std::size_t>(4 * k + c)];
+      triangle_moments(frame, unit * e.vertex[0], unit * e.vertex[1], unit * e.vertex[2], degree, exact.data());
+      for (int d = 0; d <= degree; ++d)
+        for (int q = 0; q <= d; ++q) {
+          const std::size_t t = static_cast<std::size_t>(taylor_index(d - q, q));
+          ASSERT_NEAR(held[static_cast<std::size_t>(c) * T + t], exact[t],
+                      1e-12 * std::pow(R, d + 2))
+              << builtin << " level " << level << " cluster " << k << " child " << c << " x^" << d - q << " y^" << q;
+        }
+    }
+  }
+}
+
+// Paths below the root with 0..6 digits 3: every placement class, and the wrap of six.
+TEST(ElementMoments, ChildrenOfTheNextToFinestLevelByPlacementClass) {
+  for (const int level : {1, 2, 4}) expect_moments_of_the_children("cube", level, 6);
+  expect_moments_of_the_children("tetrahedron", 7, 8);
+  for (const int degree : {1, 12}) expect_moments_of_the_children("prism:5", 3, degree);
+}
+
+TEST(ElementMoments, ChildMomentsOutsideTheNextToFinestLevelAreRefused) {
+  const Scene scene(panelrad::testing::validated_builtin("cube"));
+  const Collocation col(scene, 2);
+  const FastOperator op(col, FastOptions{});
+  EXPECT_THROW(static_cast<void>(op.child_shape_moments(-1)), std::out_of_range);
+  EXPECT_THROW(static_cast<void>(op.child_shape_moments(col.tree().level_size(1))), std::out_of_range);
+  const Collocation roots(scene, 0);
+  const FastOperator at_roots(roots, FastOptions{});
+  EXPECT_THROW(static_cast<void>(at_roots.child_shape_moments(0)), std::out_of_range);
 }
 
 TEST(ElementMoments, ElementOutsideTheSurfaceIsRefused) {

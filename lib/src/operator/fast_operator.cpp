@@ -263,9 +263,59 @@ void FastOperator::setup_element_data(const Collocation& collocation) {
         if (odd) odd[t] = k % 2 == 0 ? even[t] : -even[t];
       }
   }
+  // Level L - 1: a cluster's four elements are placed about its A(tau) as those of any cluster
+  // of its root congruent to it with the same labels: each digit 3 of its path below the root
+  // negates it (the parity above) and turns its corners' labels by one (child 3 of (a, b, c) is
+  // (ab, bc, ca), the images of (c, a, b)), so the number of digits 3 modulo 6 is its placement
+  // class. Per class, the element moments shifted by the offsets of a representative cluster (the
+  // path 0..03..3 with that many digits 3); other clusters' offsets differ from them by the
+  // rounding of the centres (as for the element moments above).
+  child_shape_moments_.clear();
+  if (L >= 1) {
+    const Index classes = placement_classes(L - 1);
+    child_shape_moments_.assign(static_cast<std::size_t>(n0 * classes) * 4 * T, 0.0);
+#pragma omp parallel for schedule(static)
+    for (Index r = 0; r < n0; ++r)
+      for (Index j = 0; j < classes; ++j) {
+        const Index k = (r << (2 * (L - 1))) + ((Index{1} << (2 * j)) - 1);  // j trailing digits 3
+        double* S = &child_shape_moments_[static_cast<std::size_t>((r * classes + j) * 4) * T];
+        for (Index c = 0; c < 4; ++c) {
+          const auto& d = to_parent_[static_cast<std::size_t>(cluster_id(L, 4 * k + c))];
+          shift_moments_add(element_moments(4 * k + c).data(), d[0], d[1], M, S + static_cast<std::size_t>(c) * T);
+        }
+      }
+  }
   rho_.resize(static_cast<std::size_t>(n_));
 #pragma omp parallel for schedule(static)
   for (Index i = 0; i < n_; ++i) rho_[static_cast<std::size_t>(i)] = collocation.reflectivity()[i];
+}
+
+namespace {
+
+// The digits 3 in the path of cluster k of level l below its root (base-4 digits of k below the
+// root's): each negates the triangle and turns its labels (setup_element_data).
+int path_threes(Index k, int l) {
+  const std::uint64_t path = static_cast<std::uint64_t>(k) & ((std::uint64_t{1} << (2 * l)) - 1);
+  const std::uint64_t threes = path & (path >> 1) & 0x5555555555555555ULL;  // digit 3: both bits set
+  return std::popcount(threes);
+}
+
+}  // namespace
+
+// The placement classes of the clusters of level l of a root: the number of digits 3 modulo 6,
+// of which a path of l digits reaches min(l + 1, 6).
+Index FastOperator::placement_classes(int l) { return std::min(l + 1, 6); }
+
+std::span<const double> FastOperator::child_shape_moments(Index k) const {
+  const int L = tree_->finest_level();
+  if (L < 1 || k < 0 || k >= tree_->level_size(L - 1))
+    throw std::out_of_range("FastOperator::child_shape_moments: cluster " + std::to_string(k) +
+                            " is not one of level L - 1 = " + std::to_string(L - 1));
+  const std::size_t T = static_cast<std::size_t>(terms_);
+  const int P = L - 1;
+  const std::size_t classes = static_cast<std::size_t>(placement_classes(P));
+  const std::size_t shape = static_cast<std::size_t>(k >> (2 * P)) * classes + static_cast<std::size_t>(path_threes(k, P) % 6);
+  return {&child_shape_moments_[shape * 4 * T], 4 * T};
 }
 
 // The moments of element e's shape (setup_element_data): those of its root, even or odd.
@@ -276,9 +326,7 @@ std::span<const double> FastOperator::element_moments(Index e) const {
   const std::size_t T = static_cast<std::size_t>(terms_);
   const int L = tree_->finest_level();
   if (L == 0) return {&shape_moments_[static_cast<std::size_t>(e) * T], T};
-  const std::uint64_t path = static_cast<std::uint64_t>(e) & ((std::uint64_t{1} << (2 * L)) - 1);  // base-4 digits below the root
-  const std::uint64_t threes = path & (path >> 1) & 0x5555555555555555ULL;  // digit 3: both bits set
-  const std::size_t shape = 2 * static_cast<std::size_t>(e >> (2 * L)) + static_cast<std::size_t>(std::popcount(threes) & 1);
+  const std::size_t shape = 2 * static_cast<std::size_t>(e >> (2 * L)) + static_cast<std::size_t>(path_threes(e, L) & 1);
   return {&shape_moments_[shape * T], T};
 }
 
@@ -576,7 +624,7 @@ std::size_t FastOperator::held_bytes() const {
   return lists + far_coef_.bytes() + far_coef_single_.bytes() +
          cluster_origin_.size() * sizeof(ClusterOrigin) + root_axes_.size() * sizeof(PlaneFrame) +
          to_parent_.size() * sizeof(to_parent_[0]) +
-         shape_moments_.size() * sizeof(double) + rho_.size() * sizeof(double) +
+         (shape_moments_.size() + child_shape_moments_.size()) * sizeof(double) + rho_.size() * sizeof(double) +
          num_clusters * static_cast<std::size_t>(terms_) * sizeof(double) /* moments per product */ +
          (targets_ ? targets_->bytes() + local_slot_.size() * sizeof(std::int64_t) + active_targets_.size() * sizeof(Index) +
                          active_targets_.size() * static_cast<std::size_t>(num_local_points(targets_->degree)) *
@@ -648,12 +696,14 @@ std::size_t FastOperator::fixed_bytes(std::size_t n, std::size_t clusters, int d
   const std::size_t T = static_cast<std::size_t>(num_taylor_terms(degree));
   // Per cluster: frame, offset to the parent, moments per product; per element: rho; per row
   // held: the near/far row starts; the element moments by shape, two per root (one at level 0:
-  // n = n0), n0 = 4 n - 3 clusters since clusters = n0 (4^(L+1) - 1) / 3 and n = n0 4^L.
+  // n = n0), and four sets per placement class of level L - 1 (none at level 0); n0 = 4 n - 3 clusters since clusters = n0 (4^(L+1) - 1) / 3 and n = n0 4^L.
   const std::size_t roots = 4 * n - 3 * clusters;
   const std::size_t shapes = std::min(n, 2 * roots);
+  int L = 0;  // n = n0 4^L
+  while (roots > 0 && L < 31 && (roots << (2 * L)) < n) ++L;
+  const std::size_t parent_shapes = L >= 1 ? roots * static_cast<std::size_t>(placement_classes(L - 1)) : 0;  // 4 T each
   return clusters * (sizeof(ClusterOrigin) + 2 * sizeof(double) + T * sizeof(double)) + roots * sizeof(PlaneFrame) +
-         n * sizeof(double) +
-         shapes * T * sizeof(double) + rows * 2 * sizeof(std::uint32_t) +
+         n * sizeof(double) + (shapes + 4 * parent_shapes) * T * sizeof(double) + rows * 2 * sizeof(std::uint32_t) +
          (rows + static_cast<std::size_t>(kRowBlock) - 1) / static_cast<std::size_t>(kRowBlock) * (sizeof(RowBlock) + 2 * sizeof(std::uint32_t));
 }
 
@@ -680,9 +730,11 @@ void FastOperator::far_coefficients(Index i, Index cluster, double* c) const {
                                 " or is not finite");
 }
 
-// Moments Int_tau v_n(Q) x^p y^q dS about A(tau) for every cluster (48): exact per element, then
-// gathered up the tree with a shift of centre. O(n) per product.
-void FastOperator::compute_moments(const Eigen::VectorXd& v, std::vector<double>& moments) const {
+// Moments Int_tau v_n(Q) x^p y^q dS about A(tau) for every cluster (48): exact per element; on
+// level L - 1, sum_c v_c times the elements' moments about the cluster's A (child_shape_moments,
+// shifted once per shape at setup); then gathered up the tree with a shift of centre. O(n) per
+// product.
+void FastOperator::compute_moments(const Eigen::VectorXd& v, geometry::UninitializedVector<double>& moments) const {
   const geometry::ClusterTree& tree = *tree_;
   const int L = tree.finest_level();
   const std::size_t T = static_cast<std::size_t>(terms_);
@@ -695,7 +747,21 @@ void FastOperator::compute_moments(const Eigen::VectorXd& v, std::vector<double>
     double* m = &moments[(leaf0 + static_cast<std::size_t>(e)) * T];
     for (std::size_t t = 0; t < T; ++t) m[t] = ve * g[t];
   }
-  for (int l = L - 1; l >= 0; --l) {
+  if (L >= 1) {  // level L - 1: sum_c v_c times its elements' moments about its A (child_shape_moments)
+    const Index size = tree.level_size(L - 1);
+#pragma omp parallel for schedule(static)
+    for (Index k = 0; k < size; ++k) {
+      double* m = &moments[static_cast<std::size_t>(cluster_id(L - 1, k)) * T];
+      const double* S = child_shape_moments(k).data();
+      for (std::size_t t = 0; t < T; ++t) m[t] = v[4 * k] * S[t];
+      for (Index c = 1; c < 4; ++c) {
+        const double vc = v[4 * k + c];
+        const double* Sc = S + static_cast<std::size_t>(c) * T;
+        for (std::size_t t = 0; t < T; ++t) m[t] += vc * Sc[t];
+      }
+    }
+  }
+  for (int l = L - 2; l >= 0; --l) {
     const Index size = tree.level_size(l);
 #pragma omp parallel for schedule(static)
     for (Index k = 0; k < size; ++k) {
@@ -872,7 +938,7 @@ void FastOperator::apply_row_columns(Index i, const double* v, const double* mom
   for (int c = 0; c < C; ++c) out[c] = near[c] + sums.total(c) + local[c];
 }
 
-double FastOperator::apply_row(Index i, const Eigen::VectorXd& v, const std::vector<double>& moments,
+double FastOperator::apply_row(Index i, const Eigen::VectorXd& v, const geometry::UninitializedVector<double>& moments,
                                const std::vector<double>& local_values, double* scratch) const {
   double out;
   apply_row_columns<1>(i, v.data(), moments.data(), local_values.data(), scratch, &out);
@@ -888,12 +954,18 @@ void FastOperator::apply(const Eigen::VectorXd& v, Eigen::VectorXd& y) const {
   apply_rows(v, y);
 }
 
+FastOperator::ProductWorkspace& FastOperator::acquire_workspace(std::unique_lock<std::mutex>& lock,
+                                                               ProductWorkspace& own) const {
+  lock = std::unique_lock<std::mutex>(workspace_mutex_, std::try_to_lock);  // a concurrent product: its own
+  return lock.owns_lock() ? workspace_ : own;
+}
+
 void FastOperator::apply_rows(const Eigen::VectorXd& v, Eigen::VectorXd& y_block) const {
   if (v.size() != n_) throw std::invalid_argument("FastOperator::apply_rows: vector size differs from n");
-  std::unique_lock<std::mutex> lock(workspace_mutex_, std::try_to_lock);  // a concurrent product: its own
+  std::unique_lock<std::mutex> lock;
   ProductWorkspace own;
-  ProductWorkspace& w = lock.owns_lock() ? workspace_ : own;
-  std::vector<double>& moments = w.moments;
+  ProductWorkspace& w = acquire_workspace(lock, own);
+  geometry::UninitializedVector<double>& moments = w.moments;
   std::vector<double>& local_values = w.local_values;
   compute_moments(v, moments);
   if (targets_) evaluate_local_expansions(moments.data(), 1, active_targets_, local_values);
@@ -922,12 +994,12 @@ void FastOperator::apply_rows_block(const Eigen::MatrixXd& V, Eigen::MatrixXd& Y
   const Index rows = row_end_ - row_begin_;
   Y.resize(rows, columns);
   const std::size_t n = static_cast<std::size_t>(n_);
-  std::unique_lock<std::mutex> lock(workspace_mutex_, std::try_to_lock);  // a concurrent product: its own
+  std::unique_lock<std::mutex> lock;
   ProductWorkspace own;
-  ProductWorkspace& w = lock.owns_lock() ? workspace_ : own;
-  std::vector<double>& moments = w.moments;
-  std::vector<double>& v_block = w.v_block;
-  std::vector<double>& m_block = w.m_block;
+  ProductWorkspace& w = acquire_workspace(lock, own);
+  geometry::UninitializedVector<double>& moments = w.moments;
+  geometry::UninitializedVector<double>& v_block = w.v_block;
+  geometry::UninitializedVector<double>& m_block = w.m_block;
   std::vector<double>& local_values = w.local_values;
   for (Index first = 0; first < columns; first += kBlockColumns) {
     const int C = static_cast<int>(std::min<Index>(kBlockColumns, columns - first));
@@ -981,6 +1053,7 @@ std::vector<std::pair<std::string, Eigen::VectorXd>> FastOperator::self_check_ve
   const auto scaled = [&](Index j) -> Vec3 { return (points[static_cast<std::size_t>(j)] - lo).cwiseProduct(inv_extent); };
   const auto make = [&](const std::string& name, auto&& value) {
     Eigen::VectorXd v(n_);
+#pragma omp parallel for schedule(static)
     for (Index j = 0; j < n_; ++j) v[j] = value(j);
     out.emplace_back(name, std::move(v));
   };
@@ -1051,6 +1124,7 @@ void FastOperator::exact_rows(FastSelfCheckReference& reference) const {
   const std::size_t V = vectors.size(), S = rows.size();
   // v_k(j) and |v_k(j)| interleaved per element: the exact rows' inner loop reads them in order.
   std::vector<double> values(static_cast<std::size_t>(n_) * 2 * V);
+#pragma omp parallel for schedule(static)
   for (Index j = 0; j < n_; ++j)
     for (std::size_t k = 0; k < V; ++k) {
       values[(static_cast<std::size_t>(j) * V + k) * 2] = vectors[k].second[j];
@@ -1063,13 +1137,17 @@ void FastOperator::exact_rows(FastSelfCheckReference& reference) const {
 #pragma omp parallel
   {
     VisibleCoveringScratch covering;
+    // A row's sums are held by its thread until the row is done: the rows of neighbouring
+    // entries of `exact` and `scale` share cache lines, and go to other threads.
+    std::vector<double> sums(2 * V);
 #pragma omp for schedule(dynamic, 1)
     for (std::size_t r = 0; r < S; ++r) {
       const Index i = rows[r];
       const double rho = rho_[static_cast<std::size_t>(i)];
-      double* ex = &reference.exact[r * V];
-      double* sc = &reference.scale[r * V];
       if (rho == 0) continue;
+      double* ex = sums.data();
+      double* sc = sums.data() + V;
+      std::fill(sums.begin(), sums.end(), 0.0);
       const Vec3& P = tree_->collocation_point(i);
       const Vec3& nP = elements[static_cast<std::size_t>(i)].normal;
       const auto add = [&](Index j, double form_factor) {
@@ -1094,6 +1172,8 @@ void FastOperator::exact_rows(FastSelfCheckReference& reference) const {
           add(j, quadrature::form_factor(P, nP, e.vertex[0], e.vertex[1], e.vertex[2], e.normal));
         }
       }
+      std::copy(ex, ex + V, reference.exact.begin() + static_cast<std::ptrdiff_t>(r * V));
+      std::copy(sc, sc + V, reference.scale.begin() + static_cast<std::ptrdiff_t>(r * V));
     }
   }
 }
@@ -1138,7 +1218,11 @@ FastSelfCheck FastOperator::self_check(const FastSelfCheckReference& reference) 
   // One vector at a time through one array of cluster moments (48): the moments are the largest
   // array of a product (T doubles per cluster, 4/3 n clusters), so holding all V at once would
   // take V times a product's memory.
-  std::vector<double> moments, local_values;
+  std::unique_lock<std::mutex> lock;
+  ProductWorkspace own;
+  ProductWorkspace& w = acquire_workspace(lock, own);
+  geometry::UninitializedVector<double>& moments = w.moments;
+  std::vector<double>& local_values = w.local_values;
   std::vector<double> fast(S * V, 0.0);
   for (std::size_t k = 0; k < V; ++k) {
     compute_moments(vectors[k].second, moments);

@@ -4,6 +4,7 @@
 // level l has children 4k .. 4k+3 on level l+1. Hence the elements (leaves, finest level L)
 // of cluster k of level l are the contiguous range [k * 4^(L-l), (k+1) * 4^(L-l)).
 #include <panelrad/geometry/mesh.hpp>
+#include <panelrad/geometry/uninitialized_vector.hpp>
 
 #include <array>
 #include <cstddef>
@@ -22,10 +23,12 @@ struct Cluster {
   std::array<Vec3, 3> vertex;  ///< corners, counter-clockwise seen from outside
   Vec3 normal;                 ///< inner unit normal n of its plane (points into the solid), (2)
   Vec3 centre;                 ///< A(tau): circumcircle centre, exact construction rounded once, (41)
-  double radius = 0;           ///< R(tau): circumcircle radius, exact construction rounded once, (41)
-  double area = 0;             ///< area of the exact midpoint subdivision: root area / 4^level
-  Index facet = 0;             ///< input facet (maximal planar polygon) it lies in
+  double radius;               ///< R(tau): circumcircle radius, exact construction rounded once, (41)
+  double area;                 ///< area of the exact midpoint subdivision: root area / 4^level
+  Index facet;                 ///< input facet (maximal planar polygon) it lies in
 };
+// No member initializers: a level's clusters are allocated without being written and first
+// written by the threads that compute them (UninitializedVector). Cluster{} is all zeros.
 
 class ClusterTree {
  public:
@@ -85,8 +88,8 @@ class ClusterTree {
   std::vector<Index> root_plane_;  // per level-0 triangle: its facet's plane id
   double mesh_size_ = 0;
   double diameter_ = 0;
-  std::vector<std::vector<Cluster>> levels_;
-  std::vector<Vec3> centroid_;
+  std::vector<UninitializedVector<Cluster>> levels_;
+  UninitializedVector<Vec3> centroid_;
 };
 
 }  // namespace panelrad::geometry

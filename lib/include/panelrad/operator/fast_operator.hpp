@@ -12,11 +12,11 @@
 // near field (43) and far coefficients (44)-(45) of those rows; the cluster moments (48) of a
 // product still need all of v.
 #include <panelrad/geometry/occluders.hpp>
+#include <panelrad/geometry/uninitialized_vector.hpp>
 #include <panelrad/operator/clustering_parameters.hpp>
 #include <panelrad/operator/collocation.hpp>
 #include <panelrad/operator/far_field.hpp>
 #include <panelrad/support/large_buffer.hpp>
-#include <panelrad/support/uninitialized_vector.hpp>
 #include <panelrad/operator/linear_operator.hpp>
 #include <panelrad/operator/near_field.hpp>
 
@@ -253,6 +253,13 @@ class FastOperator final : public RadiosityOperator {
   /// graded order. Every element of a root triangle is congruent to it (setup_element_data), so
   /// the operator holds two sets per root, not one per element.
   std::span<const double> element_moments(geometry::Index e) const;
+  /// The moments of the four elements of cluster k of level L - 1 (L >= 1) about that cluster's
+  /// A(tau), in its frame: 4 num_taylor_terms(M) values, child c's at c T. They are those
+  /// of its placement class (the number of digits 3 in its path below the root, modulo 6: each
+  /// negates the triangle and turns its corners' labels), shifted once at setup.
+  std::span<const double> child_shape_moments(geometry::Index k) const;
+  /// The placement classes of the clusters of level l of a root: min(l + 1, 6).
+  static geometry::Index placement_classes(int l);
   /// The far field's length unit: the power of two 2^-ilogb(diameter) (lengths are multiplied by it).
   static double far_field_unit(const geometry::ClusterTree& tree);
 
@@ -268,9 +275,9 @@ class FastOperator final : public RadiosityOperator {
   // the lists are never concatenated, so they are written once and held once.
   struct RowBlock {
     std::int64_t far_first = 0;
-    UninitializedVector<std::uint32_t> near_start, far_start;  // the block's rows + 1 each
-    UninitializedVector<geometry::Index> near_col, far_cluster;
-    UninitializedVector<double> near_val;
+    geometry::UninitializedVector<std::uint32_t> near_start, far_start;  // the block's rows + 1 each
+    geometry::UninitializedVector<geometry::Index> near_col, far_cluster;
+    geometry::UninitializedVector<double> near_val;
     std::size_t bytes() const;
   };
   // Row r's lists (r counted from the first row held).
@@ -328,14 +335,14 @@ class FastOperator final : public RadiosityOperator {
   std::vector<geometry::Index> self_check_rows(int samples) const;
   void exact_rows(FastSelfCheckReference& reference) const;
 
-  void compute_moments(const Eigen::VectorXd& v, std::vector<double>& moments) const;
+  void compute_moments(const Eigen::VectorXd& v, geometry::UninitializedVector<double>& moments) const;
   void far_coefficients(geometry::Index i, geometry::Index cluster, double* c) const;
   /// Row i's side of its far pairs (P_i in the far field's unit, n_P, rho_i/pi).
   far_field_batch::RowPoint far_row_point(geometry::Index i) const;
   /// The frame of cluster `id` (global id): its origin A(tau), its root's axes.
   PlaneFrame frame(geometry::Index id) const;
   far_field_batch::ClusterFrames cluster_frames() const;
-  double apply_row(geometry::Index i, const Eigen::VectorXd& v, const std::vector<double>& moments,
+  double apply_row(geometry::Index i, const Eigen::VectorXd& v, const geometry::UninitializedVector<double>& moments,
                    const std::vector<double>& local_values, double* scratch) const;
   /// Row i of the product for C vectors: out[c] = (K_n v_c)_i, each from its own moments, every
   /// sum in apply_row's order; v and moments hold the C columns interleaved (j C + c).
@@ -350,14 +357,19 @@ class FastOperator final : public RadiosityOperator {
   int terms_ = 0;                                 // (M+1)(M+2)/2
   std::vector<geometry::Index> level_offset_;     // first global id of each level
   // The per-cluster and per-row arrays are sized once and filled by parallel loops (first touch).
-  UninitializedVector<double> rho_;               // rho(P_i), all n rows (P_i and n_P are the tree's)
+  geometry::UninitializedVector<double> rho_;               // rho(P_i), all n rows (P_i and n_P are the tree's)
   double unit_scale_ = 1;                         // far field in units of 2^k ~ diameter (exact scaling)
-  UninitializedVector<ClusterOrigin> cluster_origin_;  // per cluster: A(tau) (scaled), its root's axes
+  geometry::UninitializedVector<ClusterOrigin> cluster_origin_;  // per cluster: A(tau) (scaled), its root's axes
   std::vector<PlaneFrame> root_axes_;             // per root: its frame (the axes of all its clusters)
-  UninitializedVector<std::array<double, 2>> to_parent_;  // per cluster: its A in parent's frame (roots: 0)
+  geometry::UninitializedVector<std::array<double, 2>> to_parent_;  // per cluster: its A in parent's frame (roots: 0)
   // Element moments Int_Delta x^p y^q dS about A(Delta) by shape: per root, the even and the odd
   // elements' (setup_element_data), 2 n0 T values.
   std::vector<double> shape_moments_;
+  // The moments of a level-(L-1) cluster's four elements about its own A(tau), by the cluster's
+  // placement class (placement_classes per root), four sets of T each: a product gets the
+  // cluster's moments (48) as sum_c v_c times these, instead of four shifts of centre
+  // (setup_element_data).
+  std::vector<double> child_shape_moments_;
   // Near and far field lists by blocks of rows (RowBlock): CSR within each block, with 32-bit
   // starts (4 bytes a row each, the block's first pair held once); element index and rho_i/pi Int G,
   // cluster id (and, when stored, the rho-scaled Taylor coefficients in far_coef_). CSR rather than
@@ -375,11 +387,16 @@ class FastOperator final : public RadiosityOperator {
   std::vector<geometry::Index> active_targets_;
   // The arrays of a product (cluster moments (48), local expansions' values, a block's columns),
   // kept from one product to the next: allocating them anew costs a page fault per 4 KiB each
-  // time (about 0.9 GB of moments at n = 3,145,728, M 6). A product that finds them in use by
-  // another one running at the same time uses arrays of its own.
+  // time (about 0.9 GB of moments at n = 3,145,728, M 6). They are sized uninitialized, so that
+  // the parallel loops that fill them touch them first, not one thread zeroing them. The
+  // self-check's products use them too. A product that finds them in use by another one running
+  // at the same time uses arrays of its own.
   struct ProductWorkspace {
-    std::vector<double> moments, local_values, v_block, m_block;
+    geometry::UninitializedVector<double> moments, v_block, m_block;
+    std::vector<double> local_values;
   };
+  /// The shared workspace when it is free, else `own` (the lock, when taken, is held by `lock`).
+  ProductWorkspace& acquire_workspace(std::unique_lock<std::mutex>& lock, ProductWorkspace& own) const;
   mutable std::mutex workspace_mutex_;
   mutable ProductWorkspace workspace_;
   FastStatistics stats_;
