@@ -696,7 +696,8 @@ std::size_t FastOperator::fixed_bytes(std::size_t n, std::size_t clusters, int d
   const std::size_t T = static_cast<std::size_t>(num_taylor_terms(degree));
   // Per cluster: frame, offset to the parent, moments per product; per element: rho; per row
   // held: the near/far row starts; the element moments by shape, two per root (one at level 0:
-  // n = n0), and four sets per placement class of level L - 1 (none at level 0); n0 = 4 n - 3 clusters since clusters = n0 (4^(L+1) - 1) / 3 and n = n0 4^L.
+  // n = n0), and four sets per placement class of level L - 1 (none at level 0);
+  // n0 = 4 n - 3 clusters since clusters = n0 (4^(L+1) - 1) / 3 and n = n0 4^L.
   const std::size_t roots = 4 * n - 3 * clusters;
   const std::size_t shapes = std::min(n, 2 * roots);
   int L = 0;  // n = n0 4^L
@@ -732,7 +733,7 @@ void FastOperator::far_coefficients(Index i, Index cluster, double* c) const {
 
 // Moments Int_tau v_n(Q) x^p y^q dS about A(tau) for every cluster (48): exact per element; on
 // level L - 1, sum_c v_c times the elements' moments about the cluster's A (child_shape_moments,
-// shifted once per shape at setup); then gathered up the tree with a shift of centre. O(n) per
+// shifted once per placement class at setup); then gathered up the tree with a shift of centre. O(n) per
 // product.
 void FastOperator::compute_moments(const Eigen::VectorXd& v, geometry::UninitializedVector<double>& moments) const {
   const geometry::ClusterTree& tree = *tree_;
