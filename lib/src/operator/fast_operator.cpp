@@ -733,8 +733,8 @@ void FastOperator::far_coefficients(Index i, Index cluster, double* c) const {
 
 // Moments Int_tau v_n(Q) x^p y^q dS about A(tau) for every cluster (48): exact per element; on
 // level L - 1, sum_c v_c times the elements' moments about the cluster's A (child_shape_moments,
-// shifted once per placement class at setup); then gathered up the tree with a shift of centre. O(n) per
-// product.
+// shifted once per placement class at setup); then gathered up the tree with a shift of centre.
+// O(n) per product.
 void FastOperator::compute_moments(const Eigen::VectorXd& v, geometry::UninitializedVector<double>& moments) const {
   const geometry::ClusterTree& tree = *tree_;
   const int L = tree.finest_level();
