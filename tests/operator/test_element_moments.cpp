@@ -11,15 +11,20 @@
 // and a wrong sign or scale (a mistaken parity, a missing 2^-L) is off by O(1) R^(k+2).
 #include <panelrad/geometry/builtin_scenes.hpp>
 #include <panelrad/operator/collocation.hpp>
+#include <panelrad/operator/dense_operator.hpp>
 #include <panelrad/operator/far_field.hpp>
 #include <panelrad/operator/fast_operator.hpp>
 #include <panelrad/scene/scene.hpp>
 
+#include "test_scenes.hpp"
 #include "validated_meshes.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -141,3 +146,69 @@ TEST(ElementMoments, ElementOutsideTheSurfaceIsRefused) {
 }
 
 }  // namespace
+
+// A product reads an element's moments as v_e times those of its shape (they are never stored):
+// with v the indicator of element e, (K_fast v)_i is the entry K(i, e), near or far, against the
+// dense operator's exact integral. Far, it is the Taylor series (44)-(47) of degree M of one
+// element (as a leaf of P_i's covering) or of an ancestor holding it; its remainder (46) is
+// O((R/|P - A|)^(M+1)), R/|P - A| <= eta, relative to the entry: the tolerance is eta^(M+1)
+// of the column's largest entry (1.2e-4 at eta 0.5, 2.4e-2 at eta 0.75, where level 0 has far
+// pairs), and the errors measured are 2.4 to 960 times below it. A wrong root, scale or sign of
+// the odd degrees moves an entry by O(eta) or more of itself (a flipped parity: 0.04 to 0.9 of
+// the largest entry). Every storage of the coefficients, and a block of three columns (the
+// elements' moments formed for several columns), on level 0 (every cluster an element, one
+// shape per root) and above.
+void expect_entries_of_the_elements(const std::string& builtin, int level, double eta) {
+  constexpr int kDegree = 12;
+  const double tolerance = std::pow(eta, kDegree + 1);
+  const Scene scene = panelrad::testing::reflecting_builtin(builtin);  // rho 0.5: every row computed
+  const Collocation col(scene, level);
+  const Index n = col.size();
+  const DenseOperator dense(col, NearFieldOptions{});
+  struct Mode {
+    const char* name;
+    std::size_t limit;
+    bool single;
+  };
+  for (const Mode mode : {Mode{"recomputed", 1, false}, Mode{"stored double", SIZE_MAX, false},
+                          Mode{"stored single", SIZE_MAX, true}}) {
+    FastOptions o;
+    o.eta = eta;
+    o.degree = kDegree;
+    o.far_storage_limit = mode.limit;
+    o.single_precision_coefficients = mode.single;
+    const FastOperator op(col, o);
+    ASSERT_GT(op.statistics().far_pairs, 0u) << builtin << " level " << level;
+    ASSERT_EQ(op.statistics().far_stored, mode.limit != 1);
+    double worst = 0;
+    for (Index e = 0; e < n; e += 3) {
+      const Index columns = std::min<Index>(3, n - e);
+      Eigen::MatrixXd V = Eigen::MatrixXd::Zero(n, columns), Y;
+      for (Index c = 0; c < columns; ++c) V(e + c, c) = 1.0;
+      op.apply_block(V, Y);
+      for (Index c = 0; c < columns; ++c) {
+        Eigen::VectorXd y, exact;
+        op.apply(V.col(c), y);
+        dense.apply(V.col(c), exact);
+        const double scale = exact.cwiseAbs().maxCoeff();
+        ASSERT_GT(scale, 0.0);
+        for (Index i = 0; i < n; ++i) {
+          ASSERT_EQ(Y(i, c), y[i]) << "block column " << c << ", row " << i;
+          worst = std::max(worst, std::abs(y[i] - exact[i]) / scale);
+        }
+      }
+    }
+    EXPECT_LE(worst, tolerance) << builtin << " level " << level << ", " << mode.name;
+    std::printf("%s level %d eta %.2f %s: max error %.3e of the column's largest entry\n", builtin.c_str(), level, eta,
+                mode.name, worst);
+  }
+}
+
+TEST(ElementMoments, ProductsFormThemForFarElements) {
+  expect_entries_of_the_elements("cube", 0, 0.75);
+  expect_entries_of_the_elements("prism:5", 0, 0.75);
+  expect_entries_of_the_elements("cube", 1, 0.5);
+  expect_entries_of_the_elements("cube", 2, 0.5);
+  expect_entries_of_the_elements("prism:5", 2, 0.5);
+  expect_entries_of_the_elements("tetrahedron", 3, 0.5);
+}

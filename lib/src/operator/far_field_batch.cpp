@@ -5,6 +5,7 @@
 #include <panelrad/operator/far_field.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <stdexcept>
 #include <string>
 
@@ -84,16 +85,62 @@ void gather_frames(const ClusterFrames& frames, const std::int32_t* ids, int cou
     for (int k = 0; k < 12; ++k) lanes.v[k][w] = frame[w < count ? w : 0][k];
 }
 
-// The moments of the lanes of the batch starting at pair j0 (zeros beyond count).
-int batch_moments(const std::int32_t* clusters, std::int64_t j0, std::int64_t count, const double* moments,
-                  std::size_t stride, const double** m) {
+// The shape moments (T terms) of element e of the finest level (ClusterMoments).
+inline const double* element_shape(const ClusterMoments& moments, std::int64_t e, int T) {
+  const int L = moments.finest_level;
+  const std::int64_t shape =
+      (e >> (2 * L)) * moments.shapes_per_root + (moments.shapes_per_root == 2 ? path_threes(e, L) & 1 : 0);
+  return moments.shapes + static_cast<std::size_t>(shape) * static_cast<std::size_t>(T);
+}
+
+// The moments of the lanes of the batch starting at pair j0 (zeros beyond count). One column:
+// an element's lane points at its shape's moments with scale[w] = v_e (1 for the others), and the
+// return is false when no lane needs scaling. Several columns: an element's moments are formed in
+// buffer[w].
+bool batch_moments(const std::int32_t* clusters, std::int64_t j0, std::int64_t count, const ClusterMoments& moments,
+                   int T, int C, double (*buffer)[kMaxTerms * 4], const double** m, double* scale) {
   const int in_batch = static_cast<int>(std::min<std::int64_t>(kLanes, count - j0));
-  for (int w = 0; w < kLanes; ++w)
-    m[w] = w < in_batch ? moments + static_cast<std::size_t>(clusters[j0 + w]) * stride : kZeroMoments;
-  return in_batch;
+  if (C > 1) {
+    for (int w = 0; w < kLanes; ++w)
+      m[w] = w < in_batch ? cluster_moments(moments, clusters[j0 + w], T, C, buffer[w]) : kZeroMoments;
+    return false;
+  }
+  bool scaled = false;
+  for (int w = 0; w < kLanes; ++w) {  // selects rather than branches: elements and clusters mix at random
+    const std::int64_t id = w < in_batch ? clusters[j0 + w] : -1;
+    const bool element = id >= moments.leaf_begin;
+    const std::int64_t e = element ? id - moments.leaf_begin : 0;
+    const std::int64_t held = id >= 0 && !element ? id : -1;
+    const double* stored = held >= 0 ? moments.stored + static_cast<std::size_t>(held) * static_cast<std::size_t>(T) : kZeroMoments;
+    m[w] = element ? element_shape(moments, e, T) : stored;
+    scale[w] = element ? moments.v[e] : 1.0;
+    scaled |= element;
+  }
+  return scaled;
 }
 
 }  // namespace
+
+int path_threes(std::int64_t k, int l) {
+  const std::uint64_t path = static_cast<std::uint64_t>(k) & ((std::uint64_t{1} << (2 * l)) - 1);
+  const std::uint64_t threes = path & (path >> 1) & 0x5555555555555555ULL;  // digit 3: both bits set
+  return std::popcount(threes);
+}
+
+const double* cluster_moments(const ClusterMoments& moments, std::int32_t id, int T, int C, double* buffer) {
+  const std::size_t TC = static_cast<std::size_t>(T) * static_cast<std::size_t>(C);
+  if (id < moments.leaf_begin) return moments.stored + static_cast<std::size_t>(id) * TC;
+  const std::int64_t e = id - moments.leaf_begin;
+  const double* g = element_shape(moments, e, T);
+  const double* ve = moments.v + static_cast<std::size_t>(e) * static_cast<std::size_t>(C);
+  if (C == 1) {
+    for (int t = 0; t < T; ++t) buffer[t] = ve[0] * g[t];
+  } else {
+    for (int t = 0; t < T; ++t)
+      for (int c = 0; c < C; ++c) buffer[t * C + c] = ve[c] * g[t];
+  }
+  return buffer;
+}
 
 bool pair_coefficients(const Kernels& kernels, int M, const RowPoint& row, const PlaneFrame& frame, double* c) {
   const PlaneFrame* f = &frame;
@@ -106,16 +153,20 @@ bool pair_coefficients(const Kernels& kernels, int M, const RowPoint& row, const
 }
 
 bool add_recomputed_row(const Kernels& kernels, int M, const RowPoint& row, const ClusterFrames& frames,
-                        const std::int32_t* clusters, std::int64_t count, const double* moments, int C, RowSums& sums) {
-  const std::size_t stride = static_cast<std::size_t>(num_taylor_terms(M)) * static_cast<std::size_t>(C);
+                        const std::int32_t* clusters, std::int64_t count, const ClusterMoments& moments, int C,
+                        RowSums& sums) {
+  const int T = num_taylor_terms(M);
   const auto fn = kernels.recomputed[M];
   int set = 0;
   FrameLanes lanes;
+  alignas(32) double buffer[kLanes][kMaxTerms * 4];
   for (std::int64_t j0 = 0; j0 < count; j0 += kLanes, set ^= 1) {
     const double* m[kLanes];
-    const int in_batch = batch_moments(clusters, j0, count, moments, stride, m);
+    alignas(32) double scale[kLanes];
+    const int in_batch = static_cast<int>(std::min<std::int64_t>(kLanes, count - j0));
+    const bool scaled = batch_moments(clusters, j0, count, moments, T, C, buffer, m, scale);
     gather_frames(frames, clusters + j0, in_batch, lanes);
-    if (!fn(row, lanes, m, C, sums.v[set])) return false;
+    if (!fn(row, lanes, m, scaled ? scale : nullptr, C, sums.v[set])) return false;
   }
   return true;
 }
@@ -127,8 +178,9 @@ double point_total(const double* acc, int c, int w) {
 }
 
 bool add_points(const Kernels& kernels, int M, const RowPoint* points, int count_points, const ClusterFrames& frames,
-                const std::int32_t* clusters, std::int64_t count, const double* moments, int C, double* out) {
-  const std::size_t stride = static_cast<std::size_t>(num_taylor_terms(M)) * static_cast<std::size_t>(C);
+                const std::int32_t* clusters, std::int64_t count, const ClusterMoments& moments, int C, double* out) {
+  const int T = num_taylor_terms(M);
+  alignas(32) double buffer[kMaxTerms * 4];
   const auto fn = kernels.points[M];
   const int groups = (count_points + kLanes - 1) / kLanes;
   constexpr int kMaxGroups = 48;  // up to 192 points: (kMaxLocalDegree + 1)^2 = 169
@@ -147,7 +199,7 @@ bool add_points(const Kernels& kernels, int M, const RowPoint* points, int count
   for (std::int64_t j = 0; j < count; ++j) {
     double frame[12];
     frame_of(frames, clusters[j], frame);
-    const double* m = moments + static_cast<std::size_t>(clusters[j]) * stride;
+    const double* m = cluster_moments(moments, clusters[j], T, C, buffer);
     for (int g = 0; g < groups; ++g)
       if (!fn(lanes[g], frame, m, C, acc[g])) return false;
   }

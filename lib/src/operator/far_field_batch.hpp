@@ -72,6 +72,31 @@ struct ClusterFrames {
   const PlaneFrame* axes;
 };
 
+/// The moments (47)-(48) of the clusters by global id, C columns interleaved (term t of column c
+/// at t C + c). A cluster above the finest level (id < leaf_begin) has them stored, at
+/// stored + id T C. An element of the finest level L (id = leaf_begin + e) has v_e times the
+/// moments of its shape (uniform subdivision makes it a scaled copy of its root, see
+/// FastOperator::element_moments): term t of column c is v[e C + c] shapes[s T + t], with
+/// s = (e >> 2L) shapes_per_root + (the parity of the digits 3 of e's path when shapes_per_root
+/// is 2). They are formed when read, so that a product never writes the n T C finest ones.
+struct ClusterMoments {
+  const double* stored;
+  std::int64_t leaf_begin;
+  const double* v;
+  const double* shapes;
+  int finest_level;
+  int shapes_per_root;
+};
+
+/// The number of digits 3 in the path of cluster k of level l below its root (the base-4 digits
+/// of k below the root's): each negates the triangle and turns its corners' labels by one.
+int path_threes(std::int64_t k, int l);
+
+/// The moments of cluster id, T terms and C columns: a pointer into `moments.stored`, or, for an
+/// element of the finest level, `buffer` (T C doubles) filled with v_e times its shape's moments
+/// (the same products, rounded once, as stored ones would hold).
+const double* cluster_moments(const ClusterMoments& moments, std::int32_t id, int T, int C, double* buffer);
+
 /// The kernels of one instruction set. acc holds an accumulator set (kSetSize running sums):
 /// partial sum r of column c of lane w at acc[(r kSeries + c) kLanes + w]; m[w] the moments of
 /// lane w's cluster, C columns interleaved (term t of column c at m[w][t * C + c]). Lanes without a pair get the moments of zero (and any valid
@@ -81,9 +106,10 @@ struct Kernels {
   /// The rho-scaled Taylor coefficients of the kLanes pairs, c[t * kLanes + w], degree M; false
   /// (and c undefined) when some lane's P coincides with its A(tau) or is not finite.
   bool (*coefficients[kMaxDegree + 1])(const RowPoint& row, const FrameLanes& frames, double* c);
-  /// The coefficients as above, summed with the moments into acc, C in 1..4.
+  /// The coefficients as above, summed with the moments into acc, C in 1..4. With `scale`
+  /// (kLanes doubles, C = 1 only), lane w's moments are scale[w] m[w][t], each product rounded.
   bool (*recomputed[kMaxDegree + 1])(const RowPoint& row, const FrameLanes& frames, const double* const* m,
-                                           int C, double* acc);
+                                     const double* scale, int C, double* acc);
   /// kLanes points against one cluster: frame = its origin, e1, e2, normal (12 doubles), m its
   /// moments (term t of column c at m[t C + c]); lane w of acc sums point w's pairs, C in 1..4.
   /// False when some lane's P coincides with A(tau) or is not finite.
@@ -118,7 +144,7 @@ double point_total(const double* acc, int c, int w);
 /// so each value is independent of the others. False when some P coincides with an A(tau) or is
 /// not finite.
 bool add_points(const Kernels& kernels, int M, const RowPoint* points, int count_points, const ClusterFrames& frames,
-                const std::int32_t* clusters, std::int64_t count, const double* moments, int C, double* out);
+                const std::int32_t* clusters, std::int64_t count, const ClusterMoments& moments, int C, double* out);
 
 /// The rho-scaled Taylor coefficients of the single pair (row, frame), T values in c: lane 0 of
 /// `kernels.coefficients`, so bit-identical to that pair's coefficients in any batch (the lanes
@@ -126,10 +152,11 @@ bool add_points(const Kernels& kernels, int M, const RowPoint* points, int count
 bool pair_coefficients(const Kernels& kernels, int M, const RowPoint& row, const PlaneFrame& frame, double* c);
 
 /// Adds the far field of `count` pairs of a row, pair j with cluster clusters[j] (its frame from
-/// `frames`, moments at moments + clusters[j] T C), coefficients recomputed at degree M
+/// `frames`, moments by cluster_moments), coefficients recomputed at degree M
 /// (T = (M+1)(M+2)/2 terms), pair j into lane j mod kLanes of set (j / kLanes) mod 2. False when
 /// some pair's P coincides with its A(tau) or is not finite.
 bool add_recomputed_row(const Kernels& kernels, int M, const RowPoint& row, const ClusterFrames& frames,
-                        const std::int32_t* clusters, std::int64_t count, const double* moments, int C, RowSums& sums);
+                        const std::int32_t* clusters, std::int64_t count, const ClusterMoments& moments, int C,
+                        RowSums& sums);
 
 }  // namespace panelrad::far_field_batch

@@ -156,12 +156,17 @@ template <int M>
 // of far_field_batch.hpp), in vectors over the lanes. The moments of the 4 lanes are read 4
 // consecutive doubles at a time and transposed: 4 terms of all C columns are C such reads, whose
 // columns and terms are known at compile time.
-template <int C>
-[[gnu::always_inline]] inline void add_terms(int T, const double* const* m, double* acc, const V* c) {
+// Scaled (C = 1 only): lane w's moments are scale[w] m[w][t], each product rounded before its
+// multiply-add, exactly as if they were stored (an element's v_e times its shape's moments).
+template <int C, bool Scaled = false>
+[[gnu::always_inline]] inline void add_terms(int T, const double* const* m, double* acc, const V* c,
+                                             const double* scale = nullptr) {
+  static_assert(!Scaled || C == 1, "scaled lanes hold one column");
   static_assert(kPartialSums == 4, "4 terms per group, one per partial sum");
   V a[kPartialSums][C];
   for (int r = 0; r < kPartialSums; ++r)
     for (int k = 0; k < C; ++k) a[r][k] = load(acc + (r * kSeries + k) * kLanes);
+  const V S = Scaled ? load(scale) : splat(1.0);
   const int grouped = T - T % 4;
   for (int t = 0; t < grouped; t += 4) {
     const int base = t * C;
@@ -173,6 +178,7 @@ template <int C>
 #pragma GCC unroll 4
       for (int k = 0; k < 4; ++k) {
         const int f = 4 * g + k;  // (term - t) C + column
+        if constexpr (Scaled) col[k] = col[k] * S;
         a[f / C][f % C] = madd(c[t + f / C], col[k], a[f / C][f % C]);
       }
     }
@@ -181,7 +187,9 @@ template <int C>
     const int t = grouped + r;
     for (int k = 0; k < C; ++k) {
       const int f = t * C + k;
-      a[r][k] = madd(c[t], V{m[0][f], m[1][f], m[2][f], m[3][f]}, a[r][k]);
+      V mt = V{m[0][f], m[1][f], m[2][f], m[3][f]};
+      if constexpr (Scaled) mt = mt * S;
+      a[r][k] = madd(c[t], mt, a[r][k]);
     }
   };
   if (T - grouped > 0) tail(0);
@@ -240,8 +248,18 @@ template <int M, int C>
 }
 
 template <int M>
-bool recomputed_of_degree(const RowPoint& row, const FrameLanes& frames, const double* const* m, int C,
-                          double* acc) {
+[[gnu::always_inline]] inline bool recomputed_scaled(const RowPoint& row, const FrameLanes& frames,
+                                                     const double* const* m, const double* scale, double* acc) {
+  V c[terms_of(M)];
+  if (!lane_coefficients<M>(row, frames, c)) return false;
+  add_terms<1, true>(terms_of(M), m, acc, c, scale);
+  return true;
+}
+
+template <int M>
+bool recomputed_of_degree(const RowPoint& row, const FrameLanes& frames, const double* const* m,
+                          const double* scale, int C, double* acc) {
+  if (scale) return recomputed_scaled<M>(row, frames, m, scale, acc);
   switch (C) {
     case 1: return recomputed_columns<M, 1>(row, frames, m, acc);
     case 2: return recomputed_columns<M, 2>(row, frames, m, acc);

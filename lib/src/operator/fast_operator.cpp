@@ -228,6 +228,11 @@ PlaneFrame FastOperator::frame(Index id) const {
 
 far_field_batch::ClusterFrames FastOperator::cluster_frames() const { return {cluster_origin_.data(), root_axes_.data()}; }
 
+far_field_batch::ClusterMoments FastOperator::cluster_moments(const double* moments, const double* v) const {
+  const int L = tree_->finest_level();
+  return {moments, level_offset_[static_cast<std::size_t>(L)], v, shape_moments_.data(), L, L == 0 ? 1 : 2};
+}
+
 // Element moments (48) Int_Delta x^p y^q dS about A(Delta), by shape, and rho(P_i) of every
 // element (all n: the moments of a product and the self-check's vectors need the whole surface).
 //
@@ -290,18 +295,6 @@ void FastOperator::setup_element_data(const Collocation& collocation) {
   for (Index i = 0; i < n_; ++i) rho_[static_cast<std::size_t>(i)] = collocation.reflectivity()[i];
 }
 
-namespace {
-
-// The digits 3 in the path of cluster k of level l below its root (base-4 digits of k below the
-// root's): each negates the triangle and turns its labels (setup_element_data).
-int path_threes(Index k, int l) {
-  const std::uint64_t path = static_cast<std::uint64_t>(k) & ((std::uint64_t{1} << (2 * l)) - 1);
-  const std::uint64_t threes = path & (path >> 1) & 0x5555555555555555ULL;  // digit 3: both bits set
-  return std::popcount(threes);
-}
-
-}  // namespace
-
 // The placement classes of the clusters of level l of a root: the number of digits 3 modulo 6,
 // of which a path of l digits reaches min(l + 1, 6).
 Index FastOperator::placement_classes(int l) { return std::min(l + 1, 6); }
@@ -314,7 +307,7 @@ std::span<const double> FastOperator::child_shape_moments(Index k) const {
   const std::size_t T = static_cast<std::size_t>(terms_);
   const int P = L - 1;
   const std::size_t classes = static_cast<std::size_t>(placement_classes(P));
-  const std::size_t shape = static_cast<std::size_t>(k >> (2 * P)) * classes + static_cast<std::size_t>(path_threes(k, P) % 6);
+  const std::size_t shape = static_cast<std::size_t>(k >> (2 * P)) * classes + static_cast<std::size_t>(far_field_batch::path_threes(k, P) % 6);
   return {&child_shape_moments_[shape * 4 * T], 4 * T};
 }
 
@@ -326,7 +319,7 @@ std::span<const double> FastOperator::element_moments(Index e) const {
   const std::size_t T = static_cast<std::size_t>(terms_);
   const int L = tree_->finest_level();
   if (L == 0) return {&shape_moments_[static_cast<std::size_t>(e) * T], T};
-  const std::size_t shape = 2 * static_cast<std::size_t>(e >> (2 * L)) + static_cast<std::size_t>(path_threes(e, L) & 1);
+  const std::size_t shape = 2 * static_cast<std::size_t>(e >> (2 * L)) + static_cast<std::size_t>(far_field_batch::path_threes(e, L) & 1);
   return {&shape_moments_[shape * T], T};
 }
 
@@ -625,7 +618,7 @@ std::size_t FastOperator::held_bytes() const {
          cluster_origin_.size() * sizeof(ClusterOrigin) + root_axes_.size() * sizeof(PlaneFrame) +
          to_parent_.size() * sizeof(to_parent_[0]) +
          (shape_moments_.size() + child_shape_moments_.size()) * sizeof(double) + rho_.size() * sizeof(double) +
-         num_clusters * static_cast<std::size_t>(terms_) * sizeof(double) /* moments per product */ +
+         (num_clusters - static_cast<std::size_t>(n_)) * static_cast<std::size_t>(terms_) * sizeof(double) /* moments per product, above the finest level */ +
          (targets_ ? targets_->bytes() + local_slot_.size() * sizeof(std::int64_t) + active_targets_.size() * sizeof(Index) +
                          active_targets_.size() * static_cast<std::size_t>(num_local_points(targets_->degree)) *
                              sizeof(double) /* values per product */
@@ -694,7 +687,8 @@ std::size_t FastOperator::fixed_bytes(std::size_t n, std::size_t clusters, int d
 
 std::size_t FastOperator::fixed_bytes(std::size_t n, std::size_t clusters, int degree, std::size_t rows) {
   const std::size_t T = static_cast<std::size_t>(num_taylor_terms(degree));
-  // Per cluster: frame, offset to the parent, moments per product; per element: rho; per row
+  // Per cluster: frame, offset to the parent; per cluster above the finest level (clusters - n):
+  // moments per product (an element's are formed when read); per element: rho; per row
   // held: the near/far row starts; the element moments by shape, two per root (one at level 0:
   // n = n0), and four sets per placement class of level L - 1 (none at level 0);
   // n0 = 4 n - 3 clusters since clusters = n0 (4^(L+1) - 1) / 3 and n = n0 4^L.
@@ -703,7 +697,7 @@ std::size_t FastOperator::fixed_bytes(std::size_t n, std::size_t clusters, int d
   int L = 0;  // n = n0 4^L
   while (roots > 0 && L < 31 && (roots << (2 * L)) < n) ++L;
   const std::size_t parent_shapes = L >= 1 ? roots * static_cast<std::size_t>(placement_classes(L - 1)) : 0;  // 4 T each
-  return clusters * (sizeof(ClusterOrigin) + 2 * sizeof(double) + T * sizeof(double)) + roots * sizeof(PlaneFrame) +
+  return clusters * (sizeof(ClusterOrigin) + 2 * sizeof(double)) + (clusters - std::min(clusters, n)) * T * sizeof(double) + roots * sizeof(PlaneFrame) +
          n * sizeof(double) + (shapes + 4 * parent_shapes) * T * sizeof(double) + rows * 2 * sizeof(std::uint32_t) +
          (rows + static_cast<std::size_t>(kRowBlock) - 1) / static_cast<std::size_t>(kRowBlock) * (sizeof(RowBlock) + 2 * sizeof(std::uint32_t));
 }
@@ -731,23 +725,17 @@ void FastOperator::far_coefficients(Index i, Index cluster, double* c) const {
                                 " or is not finite");
 }
 
-// Moments Int_tau v_n(Q) x^p y^q dS about A(tau) for every cluster (48): exact per element; on
-// level L - 1, sum_c v_c times the elements' moments about the cluster's A (child_shape_moments,
-// shifted once per placement class at setup); then gathered up the tree with a shift of centre.
+// Moments Int_tau v_n(Q) x^p y^q dS about A(tau) (48) of every cluster above the finest level:
+// on level L - 1, sum_c v_c times the elements' moments about the cluster's A
+// (child_shape_moments, shifted once per placement class at setup); then gathered up the tree
+// with a shift of centre. An element's moments, v_e times those of its shape, are formed where
+// the far field reads them (cluster_moments), never stored: three quarters of the clusters.
 // O(n) per product.
 void FastOperator::compute_moments(const Eigen::VectorXd& v, geometry::UninitializedVector<double>& moments) const {
   const geometry::ClusterTree& tree = *tree_;
   const int L = tree.finest_level();
   const std::size_t T = static_cast<std::size_t>(terms_);
-  moments.resize(static_cast<std::size_t>(level_offset_.back()) * T);  // every entry is written below
-  const std::size_t leaf0 = static_cast<std::size_t>(level_offset_[static_cast<std::size_t>(L)]);
-#pragma omp parallel for schedule(static)
-  for (Index e = 0; e < n_; ++e) {
-    const double ve = v[e];
-    const double* g = element_moments(e).data();
-    double* m = &moments[(leaf0 + static_cast<std::size_t>(e)) * T];
-    for (std::size_t t = 0; t < T; ++t) m[t] = ve * g[t];
-  }
+  moments.resize(static_cast<std::size_t>(level_offset_[static_cast<std::size_t>(L)]) * T);  // every entry is written below
   if (L >= 1) {  // level L - 1: sum_c v_c times its elements' moments about its A (child_shape_moments)
     const Index size = tree.level_size(L - 1);
 #pragma omp parallel for schedule(static)
@@ -790,14 +778,15 @@ void FastOperator::append_target_ancestors(Index i, std::vector<Index>& out) con
 // target's n_P and the factor 1/pi; rho_i multiplies the interpolant) over the target's sources,
 // by the recomputing kernels of far_field_batch.hpp. Independent per target: any thread count
 // gives the same values.
-void FastOperator::evaluate_local_expansions(const double* moments, int C, const std::vector<Index>& targets,
-                                             std::vector<double>& values) const {
+void FastOperator::evaluate_local_expansions(const double* moments, const double* v, int C,
+                                             const std::vector<Index>& targets, std::vector<double>& values) const {
   const int d = targets_->degree;
   const int N = num_local_points(d);
   const std::size_t table = static_cast<std::size_t>(N) * static_cast<std::size_t>(C);
   values.assign(active_targets_.size() * table, 0.0);
   const far_field_batch::Kernels& kernels = far_field_batch::kernels();
   const Index count = static_cast<Index>(targets.size());
+  const far_field_batch::ClusterMoments all_moments = cluster_moments(moments, v);
   bool failed = false;
 #pragma omp parallel for schedule(dynamic, 1)
   for (Index t = 0; t < count; ++t) {
@@ -813,7 +802,7 @@ void FastOperator::evaluate_local_expansions(const double* moments, int C, const
     const std::int64_t first = targets_->source_start[static_cast<std::size_t>(id)];
     double* out = values.data() + static_cast<std::size_t>(local_slot_[static_cast<std::size_t>(id)]) * table;
     if (!far_field_batch::add_points(kernels, options_.degree, rows, N, cluster_frames(), targets_->source.data() + first,
-                                     targets_->sources(id), moments, C, out)) {
+                                     targets_->sources(id), all_moments, C, out)) {
 #pragma omp atomic write
       failed = true;
     }
@@ -919,17 +908,18 @@ void FastOperator::apply_row_columns(Index i, const double* v, const double* mom
   far_field_batch::RowSums sums;
   if (!stats_.far_stored) {
     if (!far_field_batch::add_recomputed_row(kernels, options_.degree, far_row_point(i), cluster_frames(), clusters,
-                                             count, moments, C, sums))
+                                             count, cluster_moments(moments, v), C, sums))
       throw std::invalid_argument("FastOperator: collocation point " + std::to_string(i) +
                                   " coincides with the centre A(tau) of a far cluster or is not finite");
   } else {
     // Stored: pair by pair, each column's sum in the same order for every C (the block products of
     // several channels read the coefficients once: measured faster than the lanes here).
     const std::size_t T = static_cast<std::size_t>(terms_);
-    double far[C];
+    const far_field_batch::ClusterMoments all_moments = cluster_moments(moments, v);
+    double far[C], buffer[far_field_batch::kMaxTerms * C];
     for (int c = 0; c < C; ++c) far[c] = 0;
     for (std::int64_t j = 0; j < count; ++j) {
-      const double* m = moments + static_cast<std::size_t>(clusters[j]) * T * C;
+      const double* m = far_field_batch::cluster_moments(all_moments, clusters[j], terms_, C, buffer);
       if (options_.single_precision_coefficients) add_far_terms<C>(far_coef_single_.data() + at + static_cast<std::size_t>(j) * T, m, T, far);
       else add_far_terms<C>(far_coef_.data() + at + static_cast<std::size_t>(j) * T, m, T, far);
     }
@@ -969,7 +959,7 @@ void FastOperator::apply_rows(const Eigen::VectorXd& v, Eigen::VectorXd& y_block
   geometry::UninitializedVector<double>& moments = w.moments;
   std::vector<double>& local_values = w.local_values;
   compute_moments(v, moments);
-  if (targets_) evaluate_local_expansions(moments.data(), 1, active_targets_, local_values);
+  if (targets_) evaluate_local_expansions(moments.data(), v.data(), 1, active_targets_, local_values);
   const Index rows = row_end_ - row_begin_;
   y_block.resize(rows);
 #pragma omp parallel
@@ -1017,7 +1007,7 @@ void FastOperator::apply_rows_block(const Eigen::MatrixXd& V, Eigen::MatrixXd& Y
         if (j < M) m_block[j * static_cast<std::size_t>(C) + static_cast<std::size_t>(c)] = moments[j];
       }
     }
-    if (targets_) evaluate_local_expansions(m_block.data(), C, active_targets_, local_values);
+    if (targets_) evaluate_local_expansions(m_block.data(), v_block.data(), C, active_targets_, local_values);
     const double* lv = local_values.data();
 #pragma omp parallel
     {
@@ -1217,8 +1207,8 @@ FastSelfCheck FastOperator::self_check(const FastSelfCheckReference& reference) 
   std::sort(targets.begin(), targets.end());
   targets.erase(std::unique(targets.begin(), targets.end()), targets.end());
   // One vector at a time through one array of cluster moments (48): the moments are the largest
-  // array of a product (T doubles per cluster, 4/3 n clusters), so holding all V at once would
-  // take V times a product's memory.
+  // array of a product (T doubles per cluster above the finest level, n/3 clusters), so holding
+  // all V at once would take V times a product's memory.
   std::unique_lock<std::mutex> lock;
   ProductWorkspace own;
   ProductWorkspace& w = acquire_workspace(lock, own);
@@ -1227,7 +1217,7 @@ FastSelfCheck FastOperator::self_check(const FastSelfCheckReference& reference) 
   std::vector<double> fast(S * V, 0.0);
   for (std::size_t k = 0; k < V; ++k) {
     compute_moments(vectors[k].second, moments);
-    if (targets_) evaluate_local_expansions(moments.data(), 1, targets, local_values);
+    if (targets_) evaluate_local_expansions(moments.data(), vectors[k].second.data(), 1, targets, local_values);
 #pragma omp parallel
     {
       std::vector<double> scratch(static_cast<std::size_t>(terms_));

@@ -35,6 +35,7 @@ namespace panelrad {
 namespace far_field_batch {
 struct RowPoint;
 struct ClusterFrames;
+struct ClusterMoments;
 }
 struct TargetClusters;
 
@@ -322,8 +323,8 @@ class FastOperator final : public RadiosityOperator {
   /// with a slot, each one's parent among them when it has a slot), C columns of moments
   /// interleaved, into values[slot (d+1)^2 C + k C + c]: each target's own sources, plus its
   /// parent's expansion evaluated at its points.
-  void evaluate_local_expansions(const double* moments, int C, const std::vector<geometry::Index>& targets,
-                                 std::vector<double>& values) const;
+  void evaluate_local_expansions(const double* moments, const double* v, int C,
+                                 const std::vector<geometry::Index>& targets, std::vector<double>& values) const;
   /// Row i's local-expansion part for C columns: the interpolant of its target cluster of level
   /// target_level, whose values hold its ancestors' expansions too.
   template <int C>
@@ -342,6 +343,9 @@ class FastOperator final : public RadiosityOperator {
   /// The frame of cluster `id` (global id): its origin A(tau), its root's axes.
   PlaneFrame frame(geometry::Index id) const;
   far_field_batch::ClusterFrames cluster_frames() const;
+  /// The moments of every cluster for C columns: `moments` (compute_moments) above the finest
+  /// level, v (C columns interleaved) times the element moments by shape on it.
+  far_field_batch::ClusterMoments cluster_moments(const double* moments, const double* v) const;
   double apply_row(geometry::Index i, const Eigen::VectorXd& v, const geometry::UninitializedVector<double>& moments,
                    const std::vector<double>& local_values, double* scratch) const;
   /// Row i of the product for C vectors: out[c] = (K_n v_c)_i, each from its own moments, every
@@ -387,7 +391,7 @@ class FastOperator final : public RadiosityOperator {
   std::vector<geometry::Index> active_targets_;
   // The arrays of a product (cluster moments (48), local expansions' values, a block's columns),
   // kept from one product to the next: allocating them anew costs a page fault per 4 KiB each
-  // time (about 0.9 GB of moments at n = 3,145,728, M 6). They are sized uninitialized, so that
+  // time (about 235 MB of moments at n = 3,145,728, M 6). They are sized uninitialized, so that
   // the parallel loops that fill them touch them first, not one thread zeroing them. The
   // self-check's products use them too. A product that finds them in use by another one running
   // at the same time uses arrays of its own.
