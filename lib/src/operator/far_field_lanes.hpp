@@ -238,28 +238,20 @@ bool coefficients_of_degree(const RowPoint& row, const FrameLanes& frames, doubl
   return true;
 }
 
-template <int M, int C>
+template <int M, int C, bool Scaled = false>
 [[gnu::always_inline]] inline bool recomputed_columns(const RowPoint& row, const FrameLanes& frames,
-                                                      const double* const* m, double* acc) {
+                                                      const double* const* m, double* acc,
+                                                      const double* scale = nullptr) {
   V c[terms_of(M)];
   if (!lane_coefficients<M>(row, frames, c)) return false;
-  add_terms<C>(terms_of(M), m, acc, c);
-  return true;
-}
-
-template <int M>
-[[gnu::always_inline]] inline bool recomputed_scaled(const RowPoint& row, const FrameLanes& frames,
-                                                     const double* const* m, const double* scale, double* acc) {
-  V c[terms_of(M)];
-  if (!lane_coefficients<M>(row, frames, c)) return false;
-  add_terms<1, true>(terms_of(M), m, acc, c, scale);
+  add_terms<C, Scaled>(terms_of(M), m, acc, c, scale);
   return true;
 }
 
 template <int M>
 bool recomputed_of_degree(const RowPoint& row, const FrameLanes& frames, const double* const* m,
                           const double* scale, int C, double* acc) {
-  if (scale) return recomputed_scaled<M>(row, frames, m, scale, acc);
+  if (scale) return recomputed_columns<M, 1, true>(row, frames, m, acc, scale);  // one column (Kernels)
   switch (C) {
     case 1: return recomputed_columns<M, 1>(row, frames, m, acc);
     case 2: return recomputed_columns<M, 2>(row, frames, m, acc);
