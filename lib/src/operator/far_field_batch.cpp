@@ -86,20 +86,16 @@ void gather_frames(const ClusterFrames& frames, const std::int32_t* ids, int cou
 }
 
 // The shape moments (T terms) of element e of the finest level (ClusterMoments).
-inline const double* element_shape(const ClusterMoments& moments, std::int64_t e, int T) {
-  const int L = moments.finest_level;
-  const std::int64_t shape =
-      (e >> (2 * L)) * moments.shapes_per_root + (moments.shapes_per_root == 2 ? path_threes(e, L) & 1 : 0);
-  return moments.shapes + static_cast<std::size_t>(shape) * static_cast<std::size_t>(T);
+inline const double* shape_moments(const ClusterMoments& moments, std::int64_t e, int T) {
+  return moments.shapes + static_cast<std::size_t>(element_shape(e, moments.finest_level)) * static_cast<std::size_t>(T);
 }
 
-// The moments of the lanes of the batch starting at pair j0 (zeros beyond count). One column:
+// The moments of the in_batch lanes of the batch starting at pair j0 (zeros beyond). One column:
 // an element's lane points at its shape's moments with scale[w] = v_e (1 for the others), and the
 // return is false when no lane needs scaling. Several columns: an element's moments are formed in
 // buffer[w].
-bool batch_moments(const std::int32_t* clusters, std::int64_t j0, std::int64_t count, const ClusterMoments& moments,
-                   int T, int C, double (*buffer)[kMaxTerms * 4], const double** m, double* scale) {
-  const int in_batch = static_cast<int>(std::min<std::int64_t>(kLanes, count - j0));
+bool batch_moments(const std::int32_t* clusters, std::int64_t j0, int in_batch, const ClusterMoments& moments, int T,
+                   int C, double (*buffer)[kMaxTerms * 4], const double** m, double* scale) {
   if (C > 1) {
     for (int w = 0; w < kLanes; ++w)
       m[w] = w < in_batch ? cluster_moments(moments, clusters[j0 + w], T, C, buffer[w]) : kZeroMoments;
@@ -112,7 +108,7 @@ bool batch_moments(const std::int32_t* clusters, std::int64_t j0, std::int64_t c
     const std::int64_t e = element ? id - moments.leaf_begin : 0;
     const std::int64_t held = id >= 0 && !element ? id : -1;
     const double* stored = held >= 0 ? moments.stored + static_cast<std::size_t>(held) * static_cast<std::size_t>(T) : kZeroMoments;
-    m[w] = element ? element_shape(moments, e, T) : stored;
+    m[w] = element ? shape_moments(moments, e, T) : stored;
     scale[w] = element ? moments.v[e] : 1.0;
     scaled |= element;
   }
@@ -127,11 +123,13 @@ int path_threes(std::int64_t k, int l) {
   return std::popcount(threes);
 }
 
+std::int64_t element_shape(std::int64_t e, int L) { return L == 0 ? e : 2 * (e >> (2 * L)) + (path_threes(e, L) & 1); }
+
 const double* cluster_moments(const ClusterMoments& moments, std::int32_t id, int T, int C, double* buffer) {
   const std::size_t TC = static_cast<std::size_t>(T) * static_cast<std::size_t>(C);
   if (id < moments.leaf_begin) return moments.stored + static_cast<std::size_t>(id) * TC;
   const std::int64_t e = id - moments.leaf_begin;
-  const double* g = element_shape(moments, e, T);
+  const double* g = shape_moments(moments, e, T);
   const double* ve = moments.v + static_cast<std::size_t>(e) * static_cast<std::size_t>(C);
   if (C == 1) {
     for (int t = 0; t < T; ++t) buffer[t] = ve[0] * g[t];
@@ -164,7 +162,7 @@ bool add_recomputed_row(const Kernels& kernels, int M, const RowPoint& row, cons
     const double* m[kLanes];
     alignas(32) double scale[kLanes];
     const int in_batch = static_cast<int>(std::min<std::int64_t>(kLanes, count - j0));
-    const bool scaled = batch_moments(clusters, j0, count, moments, T, C, buffer, m, scale);
+    const bool scaled = batch_moments(clusters, j0, in_batch, moments, T, C, buffer, m, scale);
     gather_frames(frames, clusters + j0, in_batch, lanes);
     if (!fn(row, lanes, m, scaled ? scale : nullptr, C, sums.v[set])) return false;
   }

@@ -76,21 +76,25 @@ struct ClusterFrames {
 /// at t C + c). A cluster above the finest level (id < leaf_begin) has them stored, at
 /// stored + id T C. An element of the finest level L (id = leaf_begin + e) has v_e times the
 /// moments of its shape (uniform subdivision makes it a scaled copy of its root, see
-/// FastOperator::element_moments): term t of column c is v[e C + c] shapes[s T + t], with
-/// s = (e >> 2L) shapes_per_root + (the parity of the digits 3 of e's path when shapes_per_root
-/// is 2). They are formed when read, so that a product never writes the n T C finest ones.
+/// FastOperator::element_moments): term t of column c is v[e C + c] shapes[s T + t], s =
+/// element_shape(e, L). They are formed when read, so that a product never writes the n T C
+/// finest ones.
 struct ClusterMoments {
   const double* stored;
   std::int64_t leaf_begin;
   const double* v;
   const double* shapes;
   int finest_level;
-  int shapes_per_root;
 };
 
 /// The number of digits 3 in the path of cluster k of level l below its root (the base-4 digits
 /// of k below the root's): each negates the triangle and turns its corners' labels by one.
 int path_threes(std::int64_t k, int l);
+
+/// The shape of element e of level L among the element moments by shape: at level 0 its root
+/// e, above it 2 r + (the parity of the digits 3 of its path) for its root r (an even and an
+/// odd shape per root).
+std::int64_t element_shape(std::int64_t e, int L);
 
 /// The moments of cluster id, T terms and C columns: a pointer into `moments.stored`, or, for an
 /// element of the finest level, `buffer` (T C doubles) filled with v_e times its shape's moments

@@ -230,7 +230,7 @@ far_field_batch::ClusterFrames FastOperator::cluster_frames() const { return {cl
 
 far_field_batch::ClusterMoments FastOperator::cluster_moments(const double* moments, const double* v) const {
   const int L = tree_->finest_level();
-  return {moments, level_offset_[static_cast<std::size_t>(L)], v, shape_moments_.data(), L, L == 0 ? 1 : 2};
+  return {moments, level_offset_[static_cast<std::size_t>(L)], v, shape_moments_.data(), L};
 }
 
 // Element moments (48) Int_Delta x^p y^q dS about A(Delta), by shape, and rho(P_i) of every
@@ -317,9 +317,7 @@ std::span<const double> FastOperator::element_moments(Index e) const {
     throw std::out_of_range("FastOperator::element_moments: element " + std::to_string(e) + " is not in [0, " +
                             std::to_string(n_) + ")");
   const std::size_t T = static_cast<std::size_t>(terms_);
-  const int L = tree_->finest_level();
-  if (L == 0) return {&shape_moments_[static_cast<std::size_t>(e) * T], T};
-  const std::size_t shape = 2 * static_cast<std::size_t>(e >> (2 * L)) + static_cast<std::size_t>(far_field_batch::path_threes(e, L) & 1);
+  const std::size_t shape = static_cast<std::size_t>(far_field_batch::element_shape(e, tree_->finest_level()));
   return {&shape_moments_[shape * T], T};
 }
 
