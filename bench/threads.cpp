@@ -1,0 +1,208 @@
+// How the fast operator of section 4 scales from one thread to two, on the paper's cube (31):
+// setup (cluster frames, coverings (42), near field (43), far coefficients (44)-(45) when stored)
+// and the product K_n v (43), timed in pairs inside one process, one thread and two threads
+// back to back, the order swapped from pair to pair. A virtual machine's speed drifts from one
+// minute to the next (its host's other tenants, the host's memory); a pair sees the same drift,
+// so the ratio of a pair measures the threads, and the median over pairs is quoted with the
+// least and greatest pair. Each pair also checks that both thread counts give the same bits: the
+// operators set up on one and on two threads, applied on one and on two threads.
+//   - Setup: the operator of the pair before is released first, and its memory is mostly reused
+//     (the pages touched for the first time are counted: minor page faults). The first setup of a
+//     process, on memory new to it, is bench/product's.
+//   - Product: on the operator set up on two threads, one product on each thread count first (the
+//     product's workspace), then --pairs K pairs.
+//   - The host's share of the time taken from this machine (steal, /proc/stat) during the runs of
+//     each thread count, where the system reports it.
+//   usage: threads [--level L] [--pairs K] [--setup-pairs K] [--double | --single] [--recompute]
+//                  [--setting ETA M]...
+// Default: level 6 (n = 49,152), (0.5, 7), coefficients stored or not as the library chooses,
+// 9 product pairs, 5 setup pairs.
+#include <panelrad/operator/collocation.hpp>
+#include <panelrad/operator/fast_operator.hpp>
+#include <panelrad/scene/scene.hpp>
+#include <panelrad/support/resources.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include <sys/resource.h>
+
+using namespace panelrad;
+
+namespace {
+
+double median(std::vector<double> t) {
+  std::sort(t.begin(), t.end());
+  const std::size_t k = t.size() / 2;
+  return t.size() % 2 ? t[k] : 0.5 * (t[k - 1] + t[k]);
+}
+
+// Ticks of all CPUs and of steal (time the host gave to others) from the "cpu" line of
+// /proc/stat; {0, 0} where that file is not there.
+struct CpuTicks {
+  unsigned long long total = 0, steal = 0;
+};
+
+CpuTicks cpu_ticks() {
+  std::ifstream in("/proc/stat");
+  std::string name;
+  CpuTicks t;
+  if (!(in >> name) || name != "cpu") return t;
+  unsigned long long field = 0;
+  for (int k = 0; k < 10 && in >> field; ++k) {
+    t.total += field;
+    if (k == 7) t.steal = field;
+  }
+  return t;
+}
+
+// Pages this process has touched for the first time (minor page faults), all threads.
+long minor_faults() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_minflt;
+}
+
+// The timed runs of one thread count: seconds, and the ticks they took.
+struct Runs {
+  std::vector<double> seconds, faults;
+  CpuTicks ticks;
+  template <class F>
+  void time(F&& run) {
+    const CpuTicks before = cpu_ticks();
+    const long faults_before = minor_faults();
+    Stopwatch clock;
+    run();
+    seconds.push_back(clock.seconds());
+    faults.push_back(static_cast<double>(minor_faults() - faults_before));
+    const CpuTicks after = cpu_ticks();
+    ticks.total += after.total - before.total;
+    ticks.steal += after.steal - before.steal;
+  }
+  std::string steal() const {
+    if (ticks.total == 0) return "n/a";
+    char s[32];
+    std::snprintf(s, sizeof s, "%.1f%%", 100.0 * static_cast<double>(ticks.steal) / static_cast<double>(ticks.total));
+    return s;
+  }
+};
+
+void report(const char* what, const Runs& one, const Runs& two) {
+  std::vector<double> ratio;
+  for (std::size_t k = 0; k < one.seconds.size(); ++k) ratio.push_back(one.seconds[k] / two.seconds[k]);
+  const auto [lo, hi] = std::minmax_element(ratio.begin(), ratio.end());
+  std::printf("  %-8s median %.4f / %.4f s = %.2fx; pairs: median %.2fx, range %.2f-%.2fx (%zu); steal %s / %s; "
+              "new pages %.1f / %.1f MB\n",
+              what, median(one.seconds), median(two.seconds), median(one.seconds) / median(two.seconds),
+              median(ratio), *lo, *hi, ratio.size(), one.steal().c_str(), two.steal().c_str(),
+              median(one.faults) * 4096e-6, median(two.faults) * 4096e-6);
+}
+
+bool same_bits(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int level = 6, pairs = 9, setup_pairs = 5;
+  int precision = -1;  // -1: the library's default for a convex scene, 0: double, 1: single
+  bool recompute = false;
+  std::vector<std::pair<double, int>> settings;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--level") && i + 1 < argc) {
+      level = std::atoi(argv[++i]);
+    } else if (!std::strcmp(argv[i], "--pairs") && i + 1 < argc) {
+      pairs = std::max(1, std::atoi(argv[++i]));
+    } else if (!std::strcmp(argv[i], "--setup-pairs") && i + 1 < argc) {
+      setup_pairs = std::max(1, std::atoi(argv[++i]));
+    } else if (!std::strcmp(argv[i], "--double")) {
+      precision = 0;
+    } else if (!std::strcmp(argv[i], "--single")) {
+      precision = 1;
+    } else if (!std::strcmp(argv[i], "--recompute")) {
+      recompute = true;
+    } else if (!std::strcmp(argv[i], "--setting") && i + 2 < argc) {
+      const double eta = std::atof(argv[++i]);
+      settings.emplace_back(eta, std::atoi(argv[++i]));
+    } else {
+      std::cerr << "usage: threads [--level L] [--pairs K] [--setup-pairs K] [--double | --single] [--recompute] "
+                   "[--setting ETA M]...\n";
+      return 2;
+    }
+  }
+  if (settings.empty()) settings = {{0.5, 7}};
+  try {
+    const Scene cube = make_paper_cube_scene();
+    const Collocation col(cube, level);
+    std::printf("one thread against two on the cube, level %d, n = %d (hardware threads: %u)\n", level,
+                static_cast<int>(col.size()), std::thread::hardware_concurrency());
+    const Eigen::VectorXd v = Eigen::VectorXd::LinSpaced(col.size(), 0.25, 1.0);
+    for (const auto& [eta, degree] : settings) {
+      FastOptions o;
+      o.eta = eta;
+      o.degree = degree;
+      if (precision >= 0) o.single_precision_coefficients = precision == 1;
+      if (recompute) o.far_storage_limit = 1;
+      Runs setup[2], product[2];
+      std::vector<double> stage[2][4];  // per thread count: geometry, targets, coverings, far (FastStatistics)
+      bool identical = true;
+      Eigen::VectorXd reference;  // the product of the first operator, on one thread
+      Eigen::VectorXd y = Eigen::VectorXd::Zero(col.size());  // allocated before any timing
+      const auto apply = [&](const FastOperator& op, int threads, Runs* runs) {
+        set_threads(threads);
+        if (runs) runs->time([&] { op.apply(v, y); });
+        else op.apply(v, y);
+        if (reference.size() == 0) reference = y;
+        identical = identical && same_bits(y, reference);
+      };
+      std::unique_ptr<FastOperator> op[2];
+      for (int pair = 0; pair < setup_pairs; ++pair) {
+        for (int k = 0; k < 2; ++k) {
+          const int t = (pair + k) % 2;  // 0: one thread, 1: two
+          op[t].reset();
+          set_threads(t + 1);
+          setup[t].time([&] { op[t] = std::make_unique<FastOperator>(col, o); });
+          const FastStatistics& st = op[t]->statistics();
+          for (std::size_t j = 0; const double s : {st.geometry_s, st.targets_s, st.covering_s, st.far_s})
+            stage[t][j++].push_back(s);
+          apply(*op[t], t + 1, nullptr);  // the same bits as the other thread count's operator
+        }
+      }
+      for (int t = 0; t < 2; ++t) apply(*op[1], t + 1, nullptr);  // the product's workspace, first touched
+      for (int pair = 0; pair < pairs; ++pair)
+        for (int k = 0; k < 2; ++k) {
+          const int t = (pair + k) % 2;
+          apply(*op[1], t + 1, &product[t]);
+        }
+      const FastStatistics& s = op[1]->statistics();
+      std::printf("(%.2f, M %d), coefficients %s, %zu far pairs, %.1f MB held\n", eta, degree,
+                  !s.far_stored ? "recomputed" : o.single_precision_coefficients ? "float, stored" : "double, stored",
+                  s.far_pairs, static_cast<double>(op[1]->bytes()) / 1e6);
+      report("setup", setup[0], setup[1]);
+      std::printf("  stages, median 1 / 2 threads:");
+      for (std::size_t k = 0; const char* name : {"geometry", "targets", "coverings", "far"}) {
+        std::printf(" %s %.4f / %.4f s%s", name, median(stage[0][k]), median(stage[1][k]), k < 3 ? "," : "\n");
+        ++k;
+      }
+      report("product", product[0], product[1]);
+      std::printf("  bit-identical products (operators set up and applied on 1 and 2 threads): %s\n",
+                  identical ? "yes" : "NO");
+      std::fflush(stdout);
+      if (!identical) return 1;
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "threads: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
