@@ -13,6 +13,8 @@
 //     product's workspace), then --pairs K pairs.
 //   - The host's share of the time taken from this machine (steal, /proc/stat) during the runs of
 //     each thread count, where the system reports it.
+//   - Before each pair, the machine's own ceiling (two_thread_ceiling): the speed-up that a fixed
+//     arithmetic workload gets from two threads at that moment, and each pair's ratio against it.
 //   usage: threads [--level L] [--pairs K] [--setup-pairs K] [--double | --single] [--recompute]
 //                  [--setting ETA M]...
 // Default: level 6 (n = 49,152), (0.5, 7), coefficients stored or not as the library chooses,
@@ -34,6 +36,7 @@
 #include <utility>
 #include <vector>
 
+#include <omp.h>
 #include <sys/resource.h>
 
 using namespace panelrad;
@@ -72,6 +75,48 @@ long minor_faults() {
   return u.ru_minflt;
 }
 
+// A fixed arithmetic workload: independent chains of multiply-adds in registers, no memory (one
+// function, not inlined, so that every caller runs the same code; the count is read at run time).
+volatile long arithmetic_iterations = 4'000'000;
+
+[[gnu::noinline]] double arithmetic_work() {
+  double x[8] = {1, 2, 3, 4, 5, 6, 7, 8};
+  const long iterations = arithmetic_iterations;
+  for (long i = 0; i < iterations; ++i)
+    for (double& xj : x) xj = xj * 0.999999 + 1e-3;
+  double sum = 0;
+  for (const double xj : x) sum += xj;
+  return sum;
+}
+
+// What the machine itself allows two threads at this moment: the workload timed on one thread
+// alone (t), then on two threads at once, each timing its own copy (t_0, t_1), three times, the
+// medians taken; the ceiling t / t_0 + t / t_1 is the speed-up of perfectly divided work. It is 2
+// when both processors run at full speed, less when the host lets another tenant share the core
+// under one of them.
+double two_thread_ceiling() {
+  static volatile double sink = 0;
+  std::vector<double> alone, t[2];
+  for (int round = 0; round < 3; ++round) {
+    Stopwatch clock;
+    sink = arithmetic_work();
+    alone.push_back(clock.seconds());
+#pragma omp parallel num_threads(2)
+    {
+      Stopwatch own;
+      const double r = arithmetic_work();
+      const double seconds = own.seconds();
+#pragma omp critical(panelrad_bench_ceiling)
+      {
+        sink = sink + r;
+        t[omp_get_thread_num() & 1].push_back(seconds);
+      }
+    }
+  }
+  if (t[1].empty()) return 1.0;  // the team had one thread
+  return median(alone) / median(t[0]) + median(alone) / median(t[1]);
+}
+
 // The timed runs of one thread count: seconds, and the ticks they took.
 struct Runs {
   std::vector<double> seconds, faults;
@@ -96,15 +141,21 @@ struct Runs {
   }
 };
 
-void report(const char* what, const Runs& one, const Runs& two) {
-  std::vector<double> ratio;
-  for (std::size_t k = 0; k < one.seconds.size(); ++k) ratio.push_back(one.seconds[k] / two.seconds[k]);
+void report(const char* what, const Runs& one, const Runs& two, const std::vector<double>& ceiling) {
+  std::vector<double> ratio, efficiency;
+  for (std::size_t k = 0; k < one.seconds.size(); ++k) {
+    ratio.push_back(one.seconds[k] / two.seconds[k]);
+    efficiency.push_back(ratio.back() / ceiling[k]);
+  }
   const auto [lo, hi] = std::minmax_element(ratio.begin(), ratio.end());
+  const auto [clo, chi] = std::minmax_element(ceiling.begin(), ceiling.end());
   std::printf("  %-8s median %.4f / %.4f s = %.2fx; pairs: median %.2fx, range %.2f-%.2fx (%zu); steal %s / %s; "
               "new pages %.1f / %.1f MB\n",
               what, median(one.seconds), median(two.seconds), median(one.seconds) / median(two.seconds),
               median(ratio), *lo, *hi, ratio.size(), one.steal().c_str(), two.steal().c_str(),
               median(one.faults) * 4096e-6, median(two.faults) * 4096e-6);
+  std::printf("  %-8s machine's ceiling median %.2fx (%.2f-%.2fx); pair / its ceiling: median %.2f\n", "", median(ceiling),
+              *clo, *chi, median(efficiency));
 }
 
 bool same_bits(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
@@ -154,6 +205,7 @@ int main(int argc, char** argv) {
       if (precision >= 0) o.single_precision_coefficients = precision == 1;
       if (recompute) o.far_storage_limit = 1;
       Runs setup[2], product[2];
+      std::vector<double> setup_ceiling, product_ceiling;  // two_thread_ceiling before each pair
       std::vector<double> stage[2][4];  // per thread count: geometry, targets, coverings, far (FastStatistics)
       bool identical = true;
       Eigen::VectorXd reference;  // the product of the first operator, on one thread
@@ -167,6 +219,7 @@ int main(int argc, char** argv) {
       };
       std::unique_ptr<FastOperator> op[2];
       for (int pair = 0; pair < setup_pairs; ++pair) {
+        setup_ceiling.push_back(two_thread_ceiling());
         for (int k = 0; k < 2; ++k) {
           const int t = (pair + k) % 2;  // 0: one thread, 1: two
           op[t].reset();
@@ -179,22 +232,24 @@ int main(int argc, char** argv) {
         }
       }
       for (int t = 0; t < 2; ++t) apply(*op[1], t + 1, nullptr);  // the product's workspace, first touched
-      for (int pair = 0; pair < pairs; ++pair)
+      for (int pair = 0; pair < pairs; ++pair) {
+        product_ceiling.push_back(two_thread_ceiling());
         for (int k = 0; k < 2; ++k) {
           const int t = (pair + k) % 2;
           apply(*op[1], t + 1, &product[t]);
         }
+      }
       const FastStatistics& s = op[1]->statistics();
       std::printf("(%.2f, M %d), coefficients %s, %zu far pairs, %.1f MB held\n", eta, degree,
                   !s.far_stored ? "recomputed" : o.single_precision_coefficients ? "float, stored" : "double, stored",
                   s.far_pairs, static_cast<double>(op[1]->bytes()) / 1e6);
-      report("setup", setup[0], setup[1]);
+      report("setup", setup[0], setup[1], setup_ceiling);
       std::printf("  stages, median 1 / 2 threads:");
       for (std::size_t k = 0; const char* name : {"geometry", "targets", "coverings", "far"}) {
         std::printf(" %s %.4f / %.4f s%s", name, median(stage[0][k]), median(stage[1][k]), k < 3 ? "," : "\n");
         ++k;
       }
-      report("product", product[0], product[1]);
+      report("product", product[0], product[1], product_ceiling);
       std::printf("  bit-identical products (operators set up and applied on 1 and 2 threads): %s\n",
                   identical ? "yes" : "NO");
       std::fflush(stdout);

@@ -59,6 +59,10 @@ void cover(const geometry::ClusterTree& tree, const Vec3& P, Index planeP, doubl
 }
 
 constexpr Index kRowBlock = 256;  // rows per block of the parallel covering traversal
+// Indices per chunk of the loops whose bodies take nanoseconds (copies, frames). Every parallel
+// loop of setup and product is scheduled dynamically: a virtual machine's processors do not run at
+// one speed (a host's other tenants share their cores), and a static split waits for the slower.
+constexpr Index kLightChunk = 8192;
 
 /// [begin, end) of `rows`, end = -1 read as n; std::invalid_argument unless 0 <= begin <= end <= n.
 std::pair<Index, Index> resolve_rows(const RowRange& rows, Index n) {
@@ -206,7 +210,7 @@ void FastOperator::setup_cluster_frames() {
 #pragma omp parallel reduction(&& : finite)
   for (int l = 0; l <= L; ++l) {  // level by level (a child's offset reads its parent's origin), one team
     const Index m = tree.level_size(l);
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic, kLightChunk)
     for (Index k = 0; k < m; ++k) {
       const Vec3 A = unit_scale_ * tree.cluster(l, k).centre;
       const Index id = cluster_id(l, k);
@@ -254,7 +258,7 @@ void FastOperator::setup_element_data(const Collocation& collocation) {
   const std::size_t T = static_cast<std::size_t>(terms_);
   const Index n0 = tree.num_roots();
   shape_moments_.resize(static_cast<std::size_t>(n0) * (L == 0 ? 1 : 2) * T);  // level 0: every element is even
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 1)
   for (Index r = 0; r < n0; ++r) {
     const Cluster& root = tree.cluster(0, r);
     double* even = &shape_moments_[static_cast<std::size_t>(L == 0 ? r : 2 * r) * T];
@@ -279,7 +283,7 @@ void FastOperator::setup_element_data(const Collocation& collocation) {
   if (L >= 1) {
     const Index classes = placement_classes(L - 1);
     child_shape_moments_.assign(static_cast<std::size_t>(n0 * classes) * 4 * T, 0.0);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 1)
     for (Index r = 0; r < n0; ++r)
       for (Index j = 0; j < classes; ++j) {
         const Index k = (r << (2 * (L - 1))) + ((Index{1} << (2 * j)) - 1);  // j trailing digits 3
@@ -291,7 +295,7 @@ void FastOperator::setup_element_data(const Collocation& collocation) {
       }
   }
   rho_.resize(static_cast<std::size_t>(n_));
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, kLightChunk)
   for (Index i = 0; i < n_; ++i) rho_[static_cast<std::size_t>(i)] = collocation.reflectivity()[i];
 }
 
@@ -362,7 +366,7 @@ std::shared_ptr<TargetClusters> FastOperator::make_target_clusters(const geometr
   std::vector<PlaneFrame> frames(static_cast<std::size_t>(offset[static_cast<std::size_t>(plan.level) + 1]));
   for (int l = 0; l <= plan.level; ++l) {
     const Index m = tree.level_size(l);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 256)
     for (Index k = 0; k < m; ++k) {
       const Cluster& c = tree.cluster(l, k);
       frames[static_cast<std::size_t>(offset[static_cast<std::size_t>(l)] + k)] = make_plane_frame(unit * c.centre, c.normal);
@@ -385,7 +389,7 @@ void FastOperator::setup_target_clusters(std::shared_ptr<TargetClusters> targets
   const Index num_targets = level_offset_[static_cast<std::size_t>(lt) + 1];
   std::vector<char> has_row(static_cast<std::size_t>(num_targets), 0);
   const Index first_target = row_begin_ >> (2 * (L - lt)), end_target = ((row_end_ - 1) >> (2 * (L - lt))) + 1;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 64)
   for (Index k = first_target; k < std::max(first_target, end_target); ++k) {  // the targets of level lt: their rows
     const Index first = std::max(row_begin_, tree.first_element(lt, k)), end = std::min(row_end_, tree.end_element(lt, k));
     for (Index i = first; i < end && !has_row[static_cast<std::size_t>(cluster_id(lt, k))]; ++i)
@@ -645,7 +649,7 @@ FastOperator::MemoryEstimate FastOperator::estimate_memory(const Collocation& co
   for (int l = 0; l <= L; ++l) clusters += static_cast<std::size_t>(tree.level_size(l));
   const Index samples = std::min<Index>(m, 256);
   std::size_t near = 0, far = 0, sampled = 0, rows = 0;  // integer sums: the same for any thread count
-#pragma omp parallel for schedule(static) reduction(+ : rows)
+#pragma omp parallel for schedule(dynamic, kLightChunk) reduction(+ : rows)
   for (Index i = begin; i < end; ++i) rows += collocation.reflectivity()[i] != 0;
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : near, far, sampled)
   for (Index s = 0; s < samples; ++s) {
@@ -736,7 +740,7 @@ void FastOperator::compute_moments(const Eigen::VectorXd& v, geometry::Uninitial
   moments.resize(static_cast<std::size_t>(level_offset_[static_cast<std::size_t>(L)]) * T);  // every entry is written below
   if (L >= 1) {  // level L - 1: sum_c v_c times its elements' moments about its A (child_shape_moments)
     const Index size = tree.level_size(L - 1);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, kLightChunk / 8)
     for (Index k = 0; k < size; ++k) {
       double* m = &moments[static_cast<std::size_t>(cluster_id(L - 1, k)) * T];
       const double* S = child_shape_moments(k).data();
@@ -750,7 +754,7 @@ void FastOperator::compute_moments(const Eigen::VectorXd& v, geometry::Uninitial
   }
   for (int l = L - 2; l >= 0; --l) {
     const Index size = tree.level_size(l);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 64)
     for (Index k = 0; k < size; ++k) {
       double* m = &moments[static_cast<std::size_t>(cluster_id(l, k)) * T];
       std::fill(m, m + T, 0.0);
@@ -816,7 +820,7 @@ void FastOperator::evaluate_local_expansions(const double* moments, const double
     const auto begin = std::lower_bound(targets.begin(), targets.end(), level_offset_[static_cast<std::size_t>(l)]);
     const auto end = std::lower_bound(begin, targets.end(), level_offset_[static_cast<std::size_t>(l) + 1]);
     const std::int64_t first = begin - targets.begin(), last = end - targets.begin();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 16)
     for (std::int64_t t = first; t < last; ++t) {
       const Index id = targets[static_cast<std::size_t>(t)];
       const Index parent = cluster_id(l - 1, (id - cluster_id(l, 0)) / 4);
@@ -999,7 +1003,7 @@ void FastOperator::apply_rows_block(const Eigen::MatrixXd& V, Eigen::MatrixXd& Y
       compute_moments(column, moments);
       if (c == 0) m_block.resize(moments.size() * static_cast<std::size_t>(C));
       const std::size_t M = moments.size();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, kLightChunk)
       for (std::size_t j = 0; j < std::max(n, M); ++j) {
         if (j < n) v_block[j * static_cast<std::size_t>(C) + static_cast<std::size_t>(c)] = column[static_cast<Index>(j)];
         if (j < M) m_block[j * static_cast<std::size_t>(C) + static_cast<std::size_t>(c)] = moments[j];

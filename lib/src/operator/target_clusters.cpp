@@ -125,7 +125,7 @@ TargetClusters build_target_clusters(const geometry::ClusterTree& tree, const Pl
     out.source_start[static_cast<std::size_t>(id) + 1] =
         out.source_start[static_cast<std::size_t>(id)] + static_cast<std::int64_t>(sources[static_cast<std::size_t>(id)].size());
   out.source.resize(static_cast<std::size_t>(out.source_start.back()));
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 256)
   for (Index id = 0; id < targets; ++id) {
     std::vector<Index>& s = sources[static_cast<std::size_t>(id)];
     std::copy(s.begin(), s.end(), out.source.begin() + out.source_start[static_cast<std::size_t>(id)]);
@@ -137,7 +137,7 @@ TargetClusters build_target_clusters(const geometry::ClusterTree& tree, const Pl
     out.start_start[static_cast<std::size_t>(k) + 1] =
         out.start_start[static_cast<std::size_t>(k)] + static_cast<std::int64_t>(previous[static_cast<std::size_t>(k)].pass.size());
   out.start.resize(static_cast<std::size_t>(out.start_start.back()));
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 256)
   for (Index k = 0; k < m; ++k) {
     const std::vector<Item>& pass = previous[static_cast<std::size_t>(k)].pass;
     std::copy(pass.begin(), pass.end(), out.start.begin() + out.start_start[static_cast<std::size_t>(k)]);
