@@ -6,10 +6,10 @@
 // so the ratio of a pair measures the threads, and the median over pairs is quoted with the
 // least and greatest pair. Each pair also checks that both thread counts give the same bits: the
 // operators set up on one and on two threads, applied on one and on two threads.
-//   - Setup: the operator of the pair before is released first, and its memory is mostly reused
-//     (the pages touched for the first time are counted: minor page faults). The first setup of a
-//     process, on memory new to it, is bench/product's.
-//   - Product: on the operator set up on two threads, one product on each thread count first (the
+//   - Setup: the operator before is released first, and its memory is mostly reused (the pages
+//     touched for the first time are counted: minor page faults). The first setup of a process,
+//     on memory new to it, is bench/product's.
+//   - Product: on the last operator set up, one product on each thread count first (the
 //     product's workspace), then --pairs K pairs.
 //   - The host's share of the time taken from this machine (steal, /proc/stat) during the runs of
 //     each thread count, where the system reports it.
@@ -217,32 +217,32 @@ int main(int argc, char** argv) {
         if (reference.size() == 0) reference = y;
         identical = identical && same_bits(y, reference);
       };
-      std::unique_ptr<FastOperator> op[2];
+      std::unique_ptr<FastOperator> op;
       for (int pair = 0; pair < setup_pairs; ++pair) {
         setup_ceiling.push_back(two_thread_ceiling());
         for (int k = 0; k < 2; ++k) {
           const int t = (pair + k) % 2;  // 0: one thread, 1: two
-          op[t].reset();
+          op.reset();  // every setup finds the allocator as the one before it left it
           set_threads(t + 1);
-          setup[t].time([&] { op[t] = std::make_unique<FastOperator>(col, o); });
-          const FastStatistics& st = op[t]->statistics();
+          setup[t].time([&] { op = std::make_unique<FastOperator>(col, o); });
+          const FastStatistics& st = op->statistics();
           for (std::size_t j = 0; const double s : {st.geometry_s, st.targets_s, st.covering_s, st.far_s})
             stage[t][j++].push_back(s);
-          apply(*op[t], t + 1, nullptr);  // the same bits as the other thread count's operator
+          apply(*op, t + 1, nullptr);  // the same bits as the other thread count's operator
         }
       }
-      for (int t = 0; t < 2; ++t) apply(*op[1], t + 1, nullptr);  // the product's workspace, first touched
+      for (int t = 0; t < 2; ++t) apply(*op, t + 1, nullptr);  // the product's workspace, first touched
       for (int pair = 0; pair < pairs; ++pair) {
         product_ceiling.push_back(two_thread_ceiling());
         for (int k = 0; k < 2; ++k) {
           const int t = (pair + k) % 2;
-          apply(*op[1], t + 1, &product[t]);
+          apply(*op, t + 1, &product[t]);
         }
       }
-      const FastStatistics& s = op[1]->statistics();
+      const FastStatistics& s = op->statistics();
       std::printf("(%.2f, M %d), coefficients %s, %zu far pairs, %.1f MB held\n", eta, degree,
                   !s.far_stored ? "recomputed" : o.single_precision_coefficients ? "float, stored" : "double, stored",
-                  s.far_pairs, static_cast<double>(op[1]->bytes()) / 1e6);
+                  s.far_pairs, static_cast<double>(op->bytes()) / 1e6);
       report("setup", setup[0], setup[1], setup_ceiling);
       std::printf("  stages, median 1 / 2 threads:");
       for (std::size_t k = 0; const char* name : {"geometry", "targets", "coverings", "far"}) {
