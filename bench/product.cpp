@@ -18,6 +18,7 @@
 //   usage: product [--level L] [--threads T] [--products K] [--setups K] [--rows S] [--double | --single]
 //                  [--recompute] [--no-local] [--local D ETA_T MIN] [--setting ETA M]...
 // Default settings: (0.5, 6) (0.4, 7) (0.3, 7) (0.3, 8) at level 6 (n = 49,152).
+#include "fast_settings.hpp"
 #include <panelrad/operator/collocation.hpp>
 #include <panelrad/operator/fast_operator.hpp>
 #include <panelrad/scene/scene.hpp>
@@ -34,21 +35,12 @@
 
 using namespace panelrad;
 
-namespace {
-
-double median(std::vector<double> t) {
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
-}
-
-}  // namespace
+using bench::median;
 
 int main(int argc, char** argv) {
   int level = 6, products = 9, rows = 256, setups = 1;
-  int precision = -1;  // -1: the library's default for a convex scene, 0: double, 1: single
-  bool recompute = false;
+  bench::FastSettings fast;
   LocalExpansionOptions local;
-  std::vector<std::pair<double, int>> settings;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--level") && i + 1 < argc) {
       level = std::atoi(argv[++i]);
@@ -60,28 +52,19 @@ int main(int argc, char** argv) {
       setups = std::max(1, std::atoi(argv[++i]));
     } else if (!std::strcmp(argv[i], "--rows") && i + 1 < argc) {
       rows = std::max(1, std::atoi(argv[++i]));
-    } else if (!std::strcmp(argv[i], "--double")) {
-      precision = 0;
-    } else if (!std::strcmp(argv[i], "--single")) {
-      precision = 1;
-    } else if (!std::strcmp(argv[i], "--recompute")) {
-      recompute = true;
     } else if (!std::strcmp(argv[i], "--no-local")) {
       local.enabled = false;
     } else if (!std::strcmp(argv[i], "--local") && i + 3 < argc) {
       local.degree = std::atoi(argv[++i]);
       local.eta = std::atof(argv[++i]);
       local.min_points = std::atoi(argv[++i]);
-    } else if (!std::strcmp(argv[i], "--setting") && i + 2 < argc) {
-      const double eta = std::atof(argv[++i]);
-      settings.emplace_back(eta, std::atoi(argv[++i]));
-    } else {
+    } else if (!fast.parse(i, argc, argv)) {
       std::cerr << "usage: product [--level L] [--threads T] [--products K] [--setups K] [--rows S] [--double | --single] "
                    "[--recompute] [--no-local] [--local D ETA_T MIN] [--setting ETA M]...\n";
       return 2;
     }
   }
-  if (settings.empty()) settings = {{0.5, 6}, {0.4, 7}, {0.3, 7}, {0.3, 8}};
+  if (fast.settings.empty()) fast.settings = {{0.5, 6}, {0.4, 7}, {0.3, 7}, {0.3, 8}};
   try {
     const Scene cube = make_paper_cube_scene();
     Stopwatch clock;
@@ -90,13 +73,9 @@ int main(int argc, char** argv) {
                 static_cast<int>(col.size()), max_threads(), clock.seconds());
     std::printf("%5s %3s %6s %12s %9s %10s %10s %10s %9s  %s\n", "eta", "M", "store", "far pairs", "setup s",
                 "product s", "3 cols s", "MB", "B/elem", "error per self-check vector (max over vectors, self-check s)");
-    for (const auto& [eta, degree] : settings) {
-      FastOptions o;
-      o.eta = eta;
-      o.degree = degree;
+    for (const auto& [eta, degree] : fast.settings) {
+      FastOptions o = fast.options(eta, degree);
       o.local = local;
-      if (precision >= 0) o.single_precision_coefficients = precision == 1;
-      if (recompute) o.far_storage_limit = 1;
       std::vector<double> setup_s;
       for (int k = 1; k < setups; ++k) {  // the first setups: timed, then released
         clock.restart();

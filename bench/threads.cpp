@@ -19,6 +19,7 @@
 //                  [--setting ETA M]...
 // Default: level 6 (n = 49,152), (0.5, 7), coefficients stored or not as the library chooses,
 // 9 product pairs, 5 setup pairs.
+#include "fast_settings.hpp"
 #include <panelrad/operator/collocation.hpp>
 #include <panelrad/operator/fast_operator.hpp>
 #include <panelrad/scene/scene.hpp>
@@ -43,11 +44,7 @@ using namespace panelrad;
 
 namespace {
 
-double median(std::vector<double> t) {
-  std::sort(t.begin(), t.end());
-  const std::size_t k = t.size() / 2;
-  return t.size() % 2 ? t[k] : 0.5 * (t[k - 1] + t[k]);
-}
+using bench::median;
 
 // Ticks of all CPUs and of steal (time the host gave to others) from the "cpu" line of
 // /proc/stat; {0, 0} where that file is not there.
@@ -166,9 +163,7 @@ bool same_bits(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
 
 int main(int argc, char** argv) {
   int level = 6, pairs = 9, setup_pairs = 5;
-  int precision = -1;  // -1: the library's default for a convex scene, 0: double, 1: single
-  bool recompute = false;
-  std::vector<std::pair<double, int>> settings;
+  bench::FastSettings fast;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--level") && i + 1 < argc) {
       level = std::atoi(argv[++i]);
@@ -176,34 +171,21 @@ int main(int argc, char** argv) {
       pairs = std::max(1, std::atoi(argv[++i]));
     } else if (!std::strcmp(argv[i], "--setup-pairs") && i + 1 < argc) {
       setup_pairs = std::max(1, std::atoi(argv[++i]));
-    } else if (!std::strcmp(argv[i], "--double")) {
-      precision = 0;
-    } else if (!std::strcmp(argv[i], "--single")) {
-      precision = 1;
-    } else if (!std::strcmp(argv[i], "--recompute")) {
-      recompute = true;
-    } else if (!std::strcmp(argv[i], "--setting") && i + 2 < argc) {
-      const double eta = std::atof(argv[++i]);
-      settings.emplace_back(eta, std::atoi(argv[++i]));
-    } else {
+    } else if (!fast.parse(i, argc, argv)) {
       std::cerr << "usage: threads [--level L] [--pairs K] [--setup-pairs K] [--double | --single] [--recompute] "
                    "[--setting ETA M]...\n";
       return 2;
     }
   }
-  if (settings.empty()) settings = {{0.5, 7}};
+  if (fast.settings.empty()) fast.settings = {{0.5, 7}};
   try {
     const Scene cube = make_paper_cube_scene();
     const Collocation col(cube, level);
     std::printf("one thread against two on the cube, level %d, n = %d (hardware threads: %u)\n", level,
                 static_cast<int>(col.size()), std::thread::hardware_concurrency());
     const Eigen::VectorXd v = Eigen::VectorXd::LinSpaced(col.size(), 0.25, 1.0);
-    for (const auto& [eta, degree] : settings) {
-      FastOptions o;
-      o.eta = eta;
-      o.degree = degree;
-      if (precision >= 0) o.single_precision_coefficients = precision == 1;
-      if (recompute) o.far_storage_limit = 1;
+    for (const auto& [eta, degree] : fast.settings) {
+      const FastOptions o = fast.options(eta, degree);
       Runs setup[2], product[2];
       std::vector<double> setup_ceiling, product_ceiling;  // two_thread_ceiling before each pair
       std::vector<double> stage[2][4];  // per thread count: geometry, targets, coverings, far (FastStatistics)
