@@ -205,7 +205,9 @@ void FastOperator::setup_cluster_frames() {
   for (Index r = 0; r < tree.num_roots(); ++r)
     root_axes_[static_cast<std::size_t>(r)] = make_plane_frame(unit_scale_ * tree.cluster(0, r).centre, tree.cluster(0, r).normal);
   cluster_origin_.resize(static_cast<std::size_t>(num_clusters));
-  to_parent_.resize(static_cast<std::size_t>(num_clusters));
+  // The offsets are read by the shift of centre from level l + 1 to l, l <= L - 2 (compute_moments):
+  // none of the finest level, three quarters of the clusters, is held.
+  to_parent_.resize(static_cast<std::size_t>(level_offset_[static_cast<std::size_t>(L)]));
   bool finite = true;
 #pragma omp parallel reduction(&& : finite)
   for (int l = 0; l <= L; ++l) {  // level by level (a child's offset reads its parent's origin), one team
@@ -216,11 +218,15 @@ void FastOperator::setup_cluster_frames() {
       const Index id = cluster_id(l, k);
       finite = finite && A.allFinite();
       cluster_origin_[static_cast<std::size_t>(id)] = {{A[0], A[1], A[2]}, static_cast<std::int32_t>(k >> (2 * l))};
-      to_parent_[static_cast<std::size_t>(id)] =
-          l > 0 ? frame(cluster_id(l - 1, k / 4)).local(A) : std::array<double, 2>{0.0, 0.0};
+      if (l < L) to_parent_[static_cast<std::size_t>(id)] = l > 0 ? offset_in_parent(l, k, A) : std::array<double, 2>{0.0, 0.0};
     }
   }
   if (!finite) throw std::invalid_argument("fast operator: a cluster centre A(tau) is not finite in the far field's unit");
+}
+
+// A(tau) of cluster k of level l >= 1 (scaled: A) in its parent's frame.
+std::array<double, 2> FastOperator::offset_in_parent(int l, Index k, const Vec3& A) const {
+  return frame(cluster_id(l - 1, k / 4)).local(A);
 }
 
 PlaneFrame FastOperator::frame(Index id) const {
@@ -289,7 +295,7 @@ void FastOperator::setup_element_data(const Collocation& collocation) {
         const Index k = (r << (2 * (L - 1))) + ((Index{1} << (2 * j)) - 1);  // j trailing digits 3
         double* S = &child_shape_moments_[static_cast<std::size_t>((r * classes + j) * 4) * T];
         for (Index c = 0; c < 4; ++c) {
-          const auto& d = to_parent_[static_cast<std::size_t>(cluster_id(L, 4 * k + c))];
+          const auto d = offset_in_parent(L, 4 * k + c, unit_scale_ * tree.cluster(L, 4 * k + c).centre);
           shift_moments_add(element_moments(4 * k + c).data(), d[0], d[1], M, S + static_cast<std::size_t>(c) * T);
         }
       }
@@ -689,8 +695,8 @@ std::size_t FastOperator::fixed_bytes(std::size_t n, std::size_t clusters, int d
 
 std::size_t FastOperator::fixed_bytes(std::size_t n, std::size_t clusters, int degree, std::size_t rows) {
   const std::size_t T = static_cast<std::size_t>(num_taylor_terms(degree));
-  // Per cluster: frame, offset to the parent; per cluster above the finest level (clusters - n):
-  // moments per product (an element's are formed when read); per element: rho; per row
+  // Per cluster: frame; per cluster above the finest level (clusters - n): offset to the parent
+  // and moments per product (an element's are formed when read); per element: rho; per row
   // held: the near/far row starts; the element moments by shape, two per root (one at level 0:
   // n = n0), and four sets per placement class of level L - 1 (none at level 0);
   // n0 = 4 n - 3 clusters since clusters = n0 (4^(L+1) - 1) / 3 and n = n0 4^L.
@@ -699,7 +705,7 @@ std::size_t FastOperator::fixed_bytes(std::size_t n, std::size_t clusters, int d
   int L = 0;  // n = n0 4^L
   while (roots > 0 && L < 31 && (roots << (2 * L)) < n) ++L;
   const std::size_t parent_shapes = L >= 1 ? roots * static_cast<std::size_t>(placement_classes(L - 1)) : 0;  // 4 T each
-  return clusters * (sizeof(ClusterOrigin) + 2 * sizeof(double)) + (clusters - std::min(clusters, n)) * T * sizeof(double) + roots * sizeof(PlaneFrame) +
+  return clusters * sizeof(ClusterOrigin) + (clusters - std::min(clusters, n)) * (T + 2) * sizeof(double) + roots * sizeof(PlaneFrame) +
          n * sizeof(double) + (shapes + 4 * parent_shapes) * T * sizeof(double) + rows * 2 * sizeof(std::uint32_t) +
          (rows + static_cast<std::size_t>(kRowBlock) - 1) / static_cast<std::size_t>(kRowBlock) * (sizeof(RowBlock) + 2 * sizeof(std::uint32_t));
 }

@@ -4,6 +4,8 @@
 
 #include <panelrad/geometry/admissibility.hpp>
 
+#include <omp.h>
+
 #include <algorithm>
 #include <stdexcept>
 #include <string>
@@ -20,11 +22,36 @@ using Item = ClusterRef;
 // x rounded upward past the rounding of the one or two operations that made it.
 double round_up(double x) { return x * (1.0 + 0x1p-50); }
 
-// What one target cluster found besides its sources: the clusters handed to its children.
-struct TargetLists {
-  std::vector<Item> pass;
-  std::int32_t coplanar = 0;
+// What the traversal of one target cluster found: its sources and the clusters handed to its
+// children (from level lt: to the per-point coverings), as ranges of its thread's lists.
+struct Found {
+  std::int64_t source_at = 0, pass_at = 0;
+  std::int32_t sources = 0, passes = 0, thread = 0, coplanar = 0;
 };
+
+// One thread's sources and handed-down clusters for the targets of one level that it took, on a
+// cache line of its own (the lists' ends change with every cluster found).
+struct alignas(64) ThreadLists {
+  std::vector<Index> source;
+  std::vector<Item> pass;
+};
+
+// The CSR of one level's ranges (Found) from the threads' lists: the counts by a serial prefix
+// sum into starts[first + 1 ..], the lists appended to `out` in target order, in parallel.
+template <class T, class Count, class At, class ListOf>
+void append_level(const std::vector<Found>& found, std::vector<std::int64_t>& starts, std::size_t first,
+                  geometry::UninitializedVector<T>& out, Count count, At at, ListOf list_of) {
+  const Index m = static_cast<Index>(found.size());
+  for (Index k = 0; k < m; ++k)
+    starts[first + static_cast<std::size_t>(k) + 1] = starts[first + static_cast<std::size_t>(k)] + count(found[static_cast<std::size_t>(k)]);
+  out.resize(static_cast<std::size_t>(starts[first + static_cast<std::size_t>(m)]));
+#pragma omp parallel for schedule(dynamic, 256)
+  for (Index k = 0; k < m; ++k) {
+    const Found& f = found[static_cast<std::size_t>(k)];
+    const auto& list = list_of(f);
+    std::copy_n(list.begin() + at(f), count(f), out.begin() + starts[first + static_cast<std::size_t>(k)]);
+  }
+}
 
 }  // namespace
 
@@ -45,24 +72,32 @@ TargetClusters build_target_clusters(const geometry::ClusterTree& tree, const Pl
   out.degree = d;
   const Index targets = level_offset[static_cast<std::size_t>(lt) + 1];
   out.box.resize(static_cast<std::size_t>(targets));
+  out.source_start.assign(static_cast<std::size_t>(targets) + 1, 0);
   const auto id_of = [&](int l, Index k) { return level_offset[static_cast<std::size_t>(l)] + k; };
+  const double inv_scale = 1.0 / unit_scale;  // a power of two: exact
 
-  std::vector<TargetLists> previous, current;
-  std::vector<std::vector<Index>> sources(static_cast<std::size_t>(targets));
+  // Level by level: each target's traversal starts from what its parent handed down, and writes
+  // to its thread's lists (no allocation per target); the level's sources then join the CSR.
+  const std::size_t threads = static_cast<std::size_t>(std::max(1, omp_get_max_threads()));
+  std::vector<ThreadLists> previous_lists(threads), current_lists(threads);
+  std::vector<Found> previous, current;
   for (int l = 0; l <= lt; ++l) {
     const Index m = tree.level_size(l);
-    current.assign(static_cast<std::size_t>(m), TargetLists{});
-    const double inv_scale = 1.0 / unit_scale;  // a power of two: exact
+    current.assign(static_cast<std::size_t>(m), Found{});
+    for (ThreadLists& lists : current_lists) {
+      lists.source.clear();
+      lists.pass.clear();
+    }
     bool failed = false;
     std::string failure;
-    // Targets in chunks, and the traversal's lists reused from target to target (each target's
-    // copied out once, at its size): below the top levels a traversal takes under a microsecond
-    // (level 5 of the cube at n = 786,432), as long as a shared counter or a growing allocation.
+    // Targets in chunks: below the top levels a traversal takes under a microsecond (level 5 of
+    // the cube at n = 786,432), as long as a shared counter.
     const int chunk = static_cast<int>(std::clamp<Index>(m / 256, 1, 16));
 #pragma omp parallel
     {
-      std::vector<Item> stack, pass;
-      std::vector<Index> source;
+      const int thread = omp_get_thread_num();
+      ThreadLists& mine = current_lists[static_cast<std::size_t>(thread)];
+      std::vector<Item> stack;
 #pragma omp for schedule(dynamic, chunk)
       for (Index k = 0; k < m; ++k) try {
         const Cluster& sigma = tree.cluster(l, k);
@@ -74,10 +109,11 @@ TargetClusters build_target_clusters(const geometry::ClusterTree& tree, const Pl
         const Vec3 c = inv_scale * box.centre(frame);
         const double Rb = inv_scale * box.half_diagonal();
         const Index plane = tree.plane(l, k);
-        TargetLists& lists = current[static_cast<std::size_t>(k)];
+        Found f;
+        f.thread = thread;
+        f.source_at = static_cast<std::int64_t>(mine.source.size());
+        f.pass_at = static_cast<std::int64_t>(mine.pass.size());
         stack.clear();
-        pass.clear();
-        source.clear();
         const auto visit = [&](const Item& first) {
           stack.push_back(first);
           while (!stack.empty()) {
@@ -85,24 +121,27 @@ TargetClusters build_target_clusters(const geometry::ClusterTree& tree, const Pl
             stack.pop_back();
             const Cluster& tau = tree.cluster(it.level, it.k);
             if (tree.plane(it.level, it.k) == plane) {
-              ++lists.coplanar;
+              ++f.coplanar;
             } else if (geometry::is_admissible(c, tau.centre, round_up(tau.radius + round_up(eta * Rb)), eta) &&
                        geometry::is_admissible(c, tau.centre, round_up(Rb + round_up(eta_t * tau.radius)), eta_t)) {
-              source.push_back(id_of(it.level, it.k));
+              mine.source.push_back(id_of(it.level, it.k));
             } else if (it.level < L && tau.radius >= Rb) {
               for (Index child = 3; child >= 0; --child) stack.push_back({it.level + 1, 4 * it.k + child});
             } else {
-              pass.push_back(it);
+              mine.pass.push_back(it);
             }
           }
         };
         if (l == 0) {
           for (Index root = 0; root < tree.num_roots(); ++root) visit({0, root});
         } else {
-          for (const Item& it : previous[static_cast<std::size_t>(k / 4)].pass) visit(it);
+          const Found& parent = previous[static_cast<std::size_t>(k / 4)];
+          const std::vector<Item>& handed = previous_lists[static_cast<std::size_t>(parent.thread)].pass;
+          for (std::int32_t j = 0; j < parent.passes; ++j) visit(handed[static_cast<std::size_t>(parent.pass_at + j)]);
         }
-        lists.pass.assign(pass.begin(), pass.end());
-        sources[static_cast<std::size_t>(id)].assign(source.begin(), source.end());
+        f.sources = static_cast<std::int32_t>(static_cast<std::int64_t>(mine.source.size()) - f.source_at);
+        f.passes = static_cast<std::int32_t>(static_cast<std::int64_t>(mine.pass.size()) - f.pass_at);
+        current[static_cast<std::size_t>(k)] = f;
       } catch (const std::exception& e) {
 #pragma omp critical(panelrad_target_clusters)
         if (!failed) {
@@ -116,32 +155,17 @@ TargetClusters build_target_clusters(const geometry::ClusterTree& tree, const Pl
       out.coplanar_roots.resize(static_cast<std::size_t>(m));
       for (Index k = 0; k < m; ++k) out.coplanar_roots[static_cast<std::size_t>(k)] = current[static_cast<std::size_t>(k)].coplanar;
     }
+    append_level(current, out.source_start, static_cast<std::size_t>(id_of(l, 0)), out.source,
+                 [](const Found& f) { return std::int64_t{f.sources}; }, [](const Found& f) { return f.source_at; },
+                 [&](const Found& f) -> const std::vector<Index>& { return current_lists[static_cast<std::size_t>(f.thread)].source; });
     previous.swap(current);
+    previous_lists.swap(current_lists);
   }
-  // CSR of the sources (by target id) and of the starts (by cluster of level lt): the starts by
-  // a serial prefix sum, the lists copied (and the per-target ones released) in parallel.
-  out.source_start.assign(static_cast<std::size_t>(targets) + 1, 0);
-  for (Index id = 0; id < targets; ++id)
-    out.source_start[static_cast<std::size_t>(id) + 1] =
-        out.source_start[static_cast<std::size_t>(id)] + static_cast<std::int64_t>(sources[static_cast<std::size_t>(id)].size());
-  out.source.resize(static_cast<std::size_t>(out.source_start.back()));
-#pragma omp parallel for schedule(dynamic, 256)
-  for (Index id = 0; id < targets; ++id) {
-    std::vector<Index>& s = sources[static_cast<std::size_t>(id)];
-    std::copy(s.begin(), s.end(), out.source.begin() + out.source_start[static_cast<std::size_t>(id)]);
-    std::vector<Index>().swap(s);
-  }
-  const Index m = tree.level_size(lt);
-  out.start_start.assign(static_cast<std::size_t>(m) + 1, 0);
-  for (Index k = 0; k < m; ++k)
-    out.start_start[static_cast<std::size_t>(k) + 1] =
-        out.start_start[static_cast<std::size_t>(k)] + static_cast<std::int64_t>(previous[static_cast<std::size_t>(k)].pass.size());
-  out.start.resize(static_cast<std::size_t>(out.start_start.back()));
-#pragma omp parallel for schedule(dynamic, 256)
-  for (Index k = 0; k < m; ++k) {
-    const std::vector<Item>& pass = previous[static_cast<std::size_t>(k)].pass;
-    std::copy(pass.begin(), pass.end(), out.start.begin() + out.start_start[static_cast<std::size_t>(k)]);
-  }
+  // The starts of the per-point coverings: what the targets of level lt hand down.
+  out.start_start.assign(static_cast<std::size_t>(tree.level_size(lt)) + 1, 0);
+  append_level(previous, out.start_start, 0, out.start, [](const Found& f) { return std::int64_t{f.passes}; },
+               [](const Found& f) { return f.pass_at; },
+               [&](const Found& f) -> const std::vector<Item>& { return previous_lists[static_cast<std::size_t>(f.thread)].pass; });
   return out;
 }
 

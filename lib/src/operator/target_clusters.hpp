@@ -18,6 +18,7 @@
 // at least as large as the rectangle (R(tau) >= R_b); otherwise it is handed to sigma's children,
 // and from level lt to the per-point coverings.
 #include <panelrad/geometry/cluster_tree.hpp>
+#include <panelrad/geometry/uninitialized_vector.hpp>
 #include <panelrad/operator/local_expansion.hpp>
 
 #include <cstdint>
@@ -25,10 +26,11 @@
 
 namespace panelrad {
 
-/// Cluster k of level l.
+/// Cluster k of level l. Trivial (no member initializers): arrays of them, such as a
+/// traversal's stack, are not written before use.
 struct ClusterRef {
-  int level = 0;
-  geometry::Index k = 0;
+  int level;
+  geometry::Index k;
 };
 
 struct TargetClusters {
@@ -38,10 +40,10 @@ struct TargetClusters {
   /// frame, and the CSR of its sources (cluster ids).
   std::vector<LocalBox> box;
   std::vector<std::int64_t> source_start;
-  std::vector<geometry::Index> source;
+  geometry::UninitializedVector<geometry::Index> source;
   /// Per cluster k of level lt: the CSR of the clusters where its points' coverings start.
   std::vector<std::int64_t> start_start;
-  std::vector<ClusterRef> start;
+  geometry::UninitializedVector<ClusterRef> start;
   /// Per root (level-0 cluster): the roots skipped as coplanar with it (each point of the root
   /// skips them too).
   std::vector<std::int32_t> coplanar_roots;

@@ -342,6 +342,7 @@ class FastOperator final : public RadiosityOperator {
   far_field_batch::RowPoint far_row_point(geometry::Index i) const;
   /// The frame of cluster `id` (global id): its origin A(tau), its root's axes.
   PlaneFrame frame(geometry::Index id) const;
+  std::array<double, 2> offset_in_parent(int l, geometry::Index k, const Vec3& A) const;
   far_field_batch::ClusterFrames cluster_frames() const;
   /// The moments of every cluster for C columns: `moments` (compute_moments) above the finest
   /// level, v (C columns interleaved) times the element moments by shape on it.
@@ -365,7 +366,7 @@ class FastOperator final : public RadiosityOperator {
   double unit_scale_ = 1;                         // far field in units of 2^k ~ diameter (exact scaling)
   geometry::UninitializedVector<ClusterOrigin> cluster_origin_;  // per cluster: A(tau) (scaled), its root's axes
   std::vector<PlaneFrame> root_axes_;             // per root: its frame (the axes of all its clusters)
-  geometry::UninitializedVector<std::array<double, 2>> to_parent_;  // per cluster: its A in parent's frame (roots: 0)
+  geometry::UninitializedVector<std::array<double, 2>> to_parent_;  // per cluster of levels 0..L-1: its A in parent's frame (roots: 0)
   // Element moments Int_Delta x^p y^q dS about A(Delta) by shape: per root, the even and the odd
   // elements' (setup_element_data), 2 n0 T values.
   std::vector<double> shape_moments_;
