@@ -6,17 +6,21 @@
 // so the ratio of a pair measures the threads, and the median over pairs is quoted with the
 // least and greatest pair. Each pair also checks that both thread counts give the same bits: the
 // operators set up on one and on two threads, applied on one and on two threads.
-//   - Setup: the operator before is released first, and its memory is mostly reused (the pages
-//     touched for the first time are counted: minor page faults). The first setup of a process,
-//     on memory new to it, is bench/product's.
+//   - Setup: the operator before is released first. Its memory is reused as far as the allocator
+//     keeps it: glibc returns blocks above 32 MiB when they are freed, so such arrays (the
+//     cluster frames from n ~ 786,432 on) are first touched again by every setup. The pages
+//     touched for the first time are counted (minor page faults). --keep-memory has the
+//     allocator keep all freed memory, so that setups after the first measure the code apart
+//     from the page faults. The first setup of a process, on memory new to it, is bench/product's.
 //   - Product: on the last operator set up, one product on each thread count first (the
 //     product's workspace), then --pairs K pairs.
 //   - The host's share of the time taken from this machine (steal, /proc/stat) during the runs of
 //     each thread count, where the system reports it.
 //   - Before each pair, the machine's own ceiling (two_thread_ceiling): the speed-up that a fixed
-//     arithmetic workload gets from two threads at that moment, and each pair's ratio against it.
-//   usage: threads [--level L] [--pairs K] [--setup-pairs K] [--double | --single] [--recompute]
-//                  [--setting ETA M]...
+//     arithmetic workload gets from two threads at that moment, and each pair's ratio against it;
+//     before each setup pair also the first-touch ceiling, the same for touching new memory.
+//   usage: threads [--level L] [--pairs K] [--setup-pairs K] [--keep-memory] [--double | --single]
+//                  [--recompute] [--setting ETA M]...
 // Default: level 6 (n = 49,152), (0.5, 7), coefficients stored or not as the library chooses,
 // 9 product pairs, 5 setup pairs.
 #include "fast_settings.hpp"
@@ -26,6 +30,7 @@
 #include <panelrad/support/resources.hpp>
 
 #include <algorithm>
+#include <climits>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -37,7 +42,9 @@
 #include <utility>
 #include <vector>
 
+#include <malloc.h>
 #include <omp.h>
+#include <sys/mman.h>
 #include <sys/resource.h>
 
 using namespace panelrad;
@@ -86,22 +93,38 @@ volatile long arithmetic_iterations = 4'000'000;
   return sum;
 }
 
-// What the machine itself allows two threads at this moment: the workload timed on one thread
+// Memory new to the process, first touched: 16 MiB mapped, one byte written per 4 KiB page (a
+// page fault each, the kernel zeroing the page and, in a virtual machine, the host backing it),
+// unmapped. The workload of the first-touch ceiling.
+double first_touch_work() {
+  constexpr std::size_t kBytes = std::size_t{16} << 20, kPage = 4096;
+  void* p = mmap(nullptr, kBytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (p == MAP_FAILED) return 0;
+  volatile char* bytes = static_cast<volatile char*>(p);
+  for (std::size_t at = 0; at < kBytes; at += kPage) bytes[at] = 1;
+  const double first = bytes[0];
+  munmap(p, kBytes);
+  return first;
+}
+
+// What the machine itself allows two threads at this moment for a workload: timed on one thread
 // alone (t), then on two threads at once, each timing its own copy (t_0, t_1), three times, the
-// medians taken; the ceiling t / t_0 + t / t_1 is the speed-up of perfectly divided work. It is 2
-// when both processors run at full speed, less when the host lets another tenant share the core
-// under one of them.
-double two_thread_ceiling() {
+// medians taken; the ceiling t / t_0 + t / t_1 is the speed-up of perfectly divided work. For
+// arithmetic it is 2 when both processors run at full speed, less when the host lets another
+// tenant share the core under one of them; for first touches it is what the kernel's (and the
+// host's) page faults allow two threads of one process.
+template <class Work>
+double two_thread_ceiling(Work work) {
   static volatile double sink = 0;
   std::vector<double> alone, t[2];
   for (int round = 0; round < 3; ++round) {
     Stopwatch clock;
-    sink = arithmetic_work();
+    sink = work();
     alone.push_back(clock.seconds());
 #pragma omp parallel num_threads(2)
     {
       Stopwatch own;
-      const double r = arithmetic_work();
+      const double r = work();
       const double seconds = own.seconds();
 #pragma omp critical(panelrad_bench_ceiling)
       {
@@ -138,7 +161,8 @@ struct Runs {
   }
 };
 
-void report(const char* what, const Runs& one, const Runs& two, const std::vector<double>& ceiling) {
+void report(const char* what, const Runs& one, const Runs& two, const std::vector<double>& ceiling,
+            const std::vector<double>& touch_ceiling) {
   std::vector<double> ratio, efficiency;
   for (std::size_t k = 0; k < one.seconds.size(); ++k) {
     ratio.push_back(one.seconds[k] / two.seconds[k]);
@@ -151,8 +175,14 @@ void report(const char* what, const Runs& one, const Runs& two, const std::vecto
               what, median(one.seconds), median(two.seconds), median(one.seconds) / median(two.seconds),
               median(ratio), *lo, *hi, ratio.size(), one.steal().c_str(), two.steal().c_str(),
               median(one.faults) * 4096e-6, median(two.faults) * 4096e-6);
-  std::printf("  %-8s machine's ceiling median %.2fx (%.2f-%.2fx); pair / its ceiling: median %.2f\n", "", median(ceiling),
+  std::printf("  %-8s machine's ceiling median %.2fx (%.2f-%.2fx); pair / its ceiling: median %.2f", "", median(ceiling),
               *clo, *chi, median(efficiency));
+  if (touch_ceiling.empty()) {
+    std::printf("\n");
+  } else {
+    const auto [tlo, thi] = std::minmax_element(touch_ceiling.begin(), touch_ceiling.end());
+    std::printf("; first-touch ceiling median %.2fx (%.2f-%.2fx)\n", median(touch_ceiling), *tlo, *thi);
+  }
 }
 
 bool same_bits(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
@@ -163,6 +193,7 @@ bool same_bits(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
 
 int main(int argc, char** argv) {
   int level = 6, pairs = 9, setup_pairs = 5;
+  bool keep_memory = false;
   bench::FastSettings fast;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--level") && i + 1 < argc) {
@@ -171,23 +202,32 @@ int main(int argc, char** argv) {
       pairs = std::max(1, std::atoi(argv[++i]));
     } else if (!std::strcmp(argv[i], "--setup-pairs") && i + 1 < argc) {
       setup_pairs = std::max(1, std::atoi(argv[++i]));
+    } else if (!std::strcmp(argv[i], "--keep-memory")) {
+      keep_memory = true;
     } else if (!fast.parse(i, argc, argv)) {
-      std::cerr << "usage: threads [--level L] [--pairs K] [--setup-pairs K] [--double | --single] [--recompute] "
-                   "[--setting ETA M]...\n";
+      std::cerr << "usage: threads [--level L] [--pairs K] [--setup-pairs K] [--keep-memory] [--double | --single] "
+                   "[--recompute] [--setting ETA M]...\n";
       return 2;
     }
   }
   if (fast.settings.empty()) fast.settings = {{0.5, 7}};
+  // glibc maps each block above 32 MiB on its own and returns it when freed, so such arrays are
+  // new memory to every setup; kept, all of them are served from the heap and stay there.
+  if (keep_memory && !(mallopt(M_MMAP_MAX, 0) && mallopt(M_TRIM_THRESHOLD, INT_MAX))) {
+    std::cerr << "threads: --keep-memory: the allocator refused the settings\n";
+    return 2;
+  }
   try {
     const Scene cube = make_paper_cube_scene();
     const Collocation col(cube, level);
-    std::printf("one thread against two on the cube, level %d, n = %d (hardware threads: %u)\n", level,
-                static_cast<int>(col.size()), std::thread::hardware_concurrency());
+    std::printf("one thread against two on the cube, level %d, n = %d (hardware threads: %u)%s\n", level,
+                static_cast<int>(col.size()), std::thread::hardware_concurrency(),
+                keep_memory ? "; memory kept by the allocator between setups" : "");
     const Eigen::VectorXd v = Eigen::VectorXd::LinSpaced(col.size(), 0.25, 1.0);
     for (const auto& [eta, degree] : fast.settings) {
       const FastOptions o = fast.options(eta, degree);
       Runs setup[2], product[2];
-      std::vector<double> setup_ceiling, product_ceiling;  // two_thread_ceiling before each pair
+      std::vector<double> setup_ceiling, product_ceiling, touch_ceiling;  // two_thread_ceiling before each pair
       std::vector<double> stage[2][4];  // per thread count: geometry, targets, coverings, far (FastStatistics)
       bool identical = true;
       Eigen::VectorXd reference;  // the product of the first operator, on one thread
@@ -201,7 +241,8 @@ int main(int argc, char** argv) {
       };
       std::unique_ptr<FastOperator> op;
       for (int pair = 0; pair < setup_pairs; ++pair) {
-        setup_ceiling.push_back(two_thread_ceiling());
+        setup_ceiling.push_back(two_thread_ceiling(arithmetic_work));
+        touch_ceiling.push_back(two_thread_ceiling(first_touch_work));
         for (int k = 0; k < 2; ++k) {
           const int t = (pair + k) % 2;  // 0: one thread, 1: two
           op.reset();  // every setup finds the allocator as the one before it left it
@@ -215,7 +256,7 @@ int main(int argc, char** argv) {
       }
       for (int t = 0; t < 2; ++t) apply(*op, t + 1, nullptr);  // the product's workspace, first touched
       for (int pair = 0; pair < pairs; ++pair) {
-        product_ceiling.push_back(two_thread_ceiling());
+        product_ceiling.push_back(two_thread_ceiling(arithmetic_work));
         for (int k = 0; k < 2; ++k) {
           const int t = (pair + k) % 2;
           apply(*op, t + 1, &product[t]);
@@ -225,13 +266,13 @@ int main(int argc, char** argv) {
       std::printf("(%.2f, M %d), coefficients %s, %zu far pairs, %.1f MB held\n", eta, degree,
                   !s.far_stored ? "recomputed" : o.single_precision_coefficients ? "float, stored" : "double, stored",
                   s.far_pairs, static_cast<double>(op->bytes()) / 1e6);
-      report("setup", setup[0], setup[1], setup_ceiling);
+      report("setup", setup[0], setup[1], setup_ceiling, touch_ceiling);
       std::printf("  stages, median 1 / 2 threads:");
       for (std::size_t k = 0; const char* name : {"geometry", "targets", "coverings", "far"}) {
         std::printf(" %s %.4f / %.4f s%s", name, median(stage[0][k]), median(stage[1][k]), k < 3 ? "," : "\n");
         ++k;
       }
-      report("product", product[0], product[1], product_ceiling);
+      report("product", product[0], product[1], product_ceiling, {});
       std::printf("  bit-identical products (operators set up and applied on 1 and 2 threads): %s\n",
                   identical ? "yes" : "NO");
       std::fflush(stdout);
