@@ -76,6 +76,34 @@ void expect_moments_of_the_elements(const std::string& builtin, int level, int d
   }
 }
 
+// The centres A(tau) the far field expands about: held for the clusters above the finest level
+// (the circumcentre, exactly), formed for the elements from the centroid and the shape,
+// unit C(e) + s (A(root) - C(root)). Against each element's circumcentre from the tree (exact
+// construction rounded once): both are within a few roundings of the coordinates (the unit's
+// scale, ~1, at most 2^-50 each at these levels), so 1e-13 leaves a wide margin, while a wrong
+// sign or scale of the shift is off by |A - C| of an element (right triangles of the cube, the
+// prism's fans and rectangles: above 1e-3 in the unit at level 3).
+void expect_expansion_centres(const std::string& builtin, int level) {
+  const Setup setup(builtin, level, 4);
+  const geometry::ClusterTree& tree = setup.col.tree();
+  for (int l = 0; l <= level; ++l)
+    for (Index k = 0; k < tree.level_size(l); ++k) {
+      const Vec3 exact = setup.unit * tree.cluster(l, k).centre;
+      const Vec3 used = setup.op.expansion_centre(setup.op.cluster_id(l, k));
+      if (l < level) {
+        ASSERT_EQ(used, exact) << builtin << " level " << l << " cluster " << k;
+      } else {
+        ASSERT_LE((used - exact).norm(), 1e-13) << builtin << " level " << l << " element " << k;
+      }
+    }
+  EXPECT_THROW((void)setup.op.expansion_centre(setup.op.cluster_id(level, tree.level_size(level))), std::out_of_range);
+}
+
+TEST(ElementMoments, ExpansionCentresOfElementsFromTheirCentroids) {
+  for (const int level : {0, 1, 3}) expect_expansion_centres("cube", level);
+  expect_expansion_centres("prism:5", 2);
+}
+
 // Level >= 1 holds both shapes of every root: child 3 of each triangle is point-reflected.
 TEST(ElementMoments, CubeElementsAreScaledCopiesOfTheirRoots) {
   for (const int level : {0, 1, 3}) expect_moments_of_the_elements("cube", level, 6);

@@ -67,10 +67,16 @@ void gather_frames(const PlaneFrame* const* frames, int count, FrameLanes& lanes
 
 // The frame of cluster id: its origin, its plane's axes.
 void frame_of(const ClusterFrames& frames, std::int32_t id, double* frame) {
-  const ClusterOrigin& o = frames.origin[id];
-  const PlaneFrame& axes = frames.axes[o.axes];
+  std::int32_t index;
+  if (id >= frames.leaf_begin) {
+    index = element_origin(frames, id - frames.leaf_begin, frame);
+  } else {
+    const ClusterOrigin& o = frames.origin[id];
+    index = o.axes;
+    for (int k = 0; k < 3; ++k) frame[k] = o.origin[k];
+  }
+  const PlaneFrame& axes = frames.axes[index];
   for (int k = 0; k < 3; ++k) {
-    frame[k] = o.origin[k];
     frame[3 + k] = axes.e1[k];
     frame[6 + k] = axes.e2[k];
     frame[9 + k] = axes.normal[k];
@@ -124,6 +130,13 @@ int path_threes(std::int64_t k, int l) {
 }
 
 std::int64_t element_shape(std::int64_t e, int L) { return L == 0 ? e : 2 * (e >> (2 * L)) + (path_threes(e, L) & 1); }
+
+std::int32_t element_origin(const ClusterFrames& frames, std::int64_t e, double* origin) {
+  const double* c = frames.centroid + 3 * e;
+  const double* shift = frames.shift + 3 * element_shape(e, frames.finest_level);
+  for (int k = 0; k < 3; ++k) origin[k] = frames.unit * c[k] + shift[k];  // unit * c exact: one rounding
+  return static_cast<std::int32_t>(e >> (2 * frames.finest_level));
+}
 
 const double* cluster_moments(const ClusterMoments& moments, std::int32_t id, int T, int C, double* buffer) {
   const std::size_t TC = static_cast<std::size_t>(T) * static_cast<std::size_t>(C);

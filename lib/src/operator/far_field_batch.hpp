@@ -65,12 +65,26 @@ struct FrameLanes {
   alignas(32) double v[12][kLanes];
 };
 
-/// The frames of the clusters by global id: origin[id].origin, and the axes e1, e2, n_Q of
-/// axes[origin[id].axes] (whose own origin is not read).
+/// The frames of the clusters by global id. A cluster above the finest level (id < leaf_begin)
+/// has its origin A(tau) at origin[id].origin and the axes e1, e2, n_Q of axes[origin[id].axes]
+/// (whose own origin is not read). An element e = id - leaf_begin of the finest level L is its
+/// root's shape scaled by s = +-2^-L and translated (uniform subdivision, see
+/// FastOperator::element_moments), and circumcentre and centroid move with it:
+/// A(e) - C(e) = s (A(root) - C(root)). Its origin is unit C(e) + shift[3 s_e .. 3 s_e + 2], with
+/// C(e) at centroid[3 e .. 3 e + 2] (the tree's collocation points), s_e = element_shape(e, L)
+/// and unit a power of two (an exact scaling); its axes are its root's, axes[e >> 2L].
 struct ClusterFrames {
   const ClusterOrigin* origin;
   const PlaneFrame* axes;
+  std::int64_t leaf_begin;
+  int finest_level;
+  const double* centroid;
+  const double* shift;
+  double unit;
 };
+
+/// The origin of element e of the finest level (ClusterFrames) and the index of its axes.
+std::int32_t element_origin(const ClusterFrames& frames, std::int64_t e, double* origin);
 
 /// The moments (47)-(48) of the clusters by global id, C columns interleaved (term t of column c
 /// at t C + c). A cluster above the finest level (id < leaf_begin) has them stored, at

@@ -193,24 +193,40 @@ void FastOperator::refuse_beyond_memory(const Collocation& collocation, const Ta
 // Cluster ids, plane frames about A(tau) and the offsets of each A(tau) in its parent's frame
 // (the shift of centre of (48)). A frame's axes depend on its normal alone (make_plane_frame),
 // and every cluster has its root's normal (uniform subdivision), so the axes are held per root
-// and each cluster holds its origin: the same frames as one PlaneFrame per cluster, at a third of
-// the memory written in setup and read in a product.
+// and each cluster above the finest level holds its origin (32 B); an element's origin is formed
+// where it is read, from its centroid (the collocation point, held by the tree) and its shape.
 void FastOperator::setup_cluster_frames() {
   const geometry::ClusterTree& tree = *tree_;
   const int L = tree.finest_level();
   unit_scale_ = far_field_unit(tree);
   level_offset_ = level_offsets(tree);
-  const Index num_clusters = level_offset_.back();
   root_axes_.resize(static_cast<std::size_t>(tree.num_roots()));
   for (Index r = 0; r < tree.num_roots(); ++r)
     root_axes_[static_cast<std::size_t>(r)] = make_plane_frame(unit_scale_ * tree.cluster(0, r).centre, tree.cluster(0, r).normal);
-  cluster_origin_.resize(static_cast<std::size_t>(num_clusters));
-  // The offsets are read by the shift of centre from level l + 1 to l, l <= L - 2 (compute_moments):
-  // none of the finest level, three quarters of the clusters, is held.
-  to_parent_.resize(static_cast<std::size_t>(level_offset_[static_cast<std::size_t>(L)]));
+  // Held for the clusters above the finest level, three quarters of all: the elements' origins
+  // follow from their centroids and their shapes (leaf_shift_, far_field_batch::ClusterFrames),
+  // and the offsets are read by the shift of centre from level l + 1 to l, l <= L - 2 (compute_moments).
+  const Index held = level_offset_[static_cast<std::size_t>(L)];
+  cluster_origin_.resize(static_cast<std::size_t>(held));
+  to_parent_.resize(static_cast<std::size_t>(held));
+  // Per shape of the finest level (two per root, even and odd; one at level 0): s (A(root) - C(root))
+  // in the far field's unit, s = +-2^-L, C(root) its centroid; the scalings by powers of two are
+  // exact. An element's centroid lies in its root, so the root's corners in the unit bound it.
+  const Index n0 = tree.num_roots();
+  const int parities = L == 0 ? 1 : 2;
+  leaf_shift_.resize(static_cast<std::size_t>(3 * parities * n0));
   bool finite = true;
+  for (Index r = 0; r < n0; ++r) {
+    const Cluster& root = tree.cluster(0, r);
+    for (const Vec3& corner : root.vertex) finite = finite && (unit_scale_ * corner).allFinite();
+    const Vec3 d = std::ldexp(unit_scale_, -L) * (root.centre - (root.vertex[0] + root.vertex[1] + root.vertex[2]) / 3.0);
+    finite = finite && d.allFinite();
+    for (int parity = 0; parity < parities; ++parity)
+      for (int k = 0; k < 3; ++k)
+        leaf_shift_[static_cast<std::size_t>(3 * (parities * r + parity) + k)] = parity ? -d[k] : d[k];
+  }
 #pragma omp parallel reduction(&& : finite)
-  for (int l = 0; l <= L; ++l) {  // level by level (a child's offset reads its parent's origin), one team
+  for (int l = 0; l < L; ++l) {  // level by level (a child's offset reads its parent's origin), one team
     const Index m = tree.level_size(l);
 #pragma omp for schedule(dynamic, kLightChunk)
     for (Index k = 0; k < m; ++k) {
@@ -218,7 +234,7 @@ void FastOperator::setup_cluster_frames() {
       const Index id = cluster_id(l, k);
       finite = finite && A.allFinite();
       cluster_origin_[static_cast<std::size_t>(id)] = {{A[0], A[1], A[2]}, static_cast<std::int32_t>(k >> (2 * l))};
-      if (l < L) to_parent_[static_cast<std::size_t>(id)] = l > 0 ? offset_in_parent(l, k, A) : std::array<double, 2>{0.0, 0.0};
+      to_parent_[static_cast<std::size_t>(id)] = l > 0 ? offset_in_parent(l, k, A) : std::array<double, 2>{0.0, 0.0};
     }
   }
   if (!finite) throw std::invalid_argument("fast operator: a cluster centre A(tau) is not finite in the far field's unit");
@@ -230,13 +246,32 @@ std::array<double, 2> FastOperator::offset_in_parent(int l, Index k, const Vec3&
 }
 
 PlaneFrame FastOperator::frame(Index id) const {
+  const Index leaf_begin = level_offset_[static_cast<std::size_t>(tree_->finest_level())];
+  if (id >= leaf_begin) {  // an element: the same origin as the far-field kernels form
+    double origin[3];
+    PlaneFrame f = root_axes_[static_cast<std::size_t>(far_field_batch::element_origin(cluster_frames(), id - leaf_begin, origin))];
+    f.origin = Vec3(origin[0], origin[1], origin[2]);
+    return f;
+  }
   const ClusterOrigin& o = cluster_origin_[static_cast<std::size_t>(id)];
   PlaneFrame f = root_axes_[static_cast<std::size_t>(o.axes)];
   f.origin = Vec3(o.origin[0], o.origin[1], o.origin[2]);
   return f;
 }
 
-far_field_batch::ClusterFrames FastOperator::cluster_frames() const { return {cluster_origin_.data(), root_axes_.data()}; }
+Vec3 FastOperator::expansion_centre(Index id) const {
+  if (id < 0 || id >= level_offset_.back())
+    throw std::out_of_range("FastOperator::expansion_centre: cluster id " + std::to_string(id) + " is not in [0, " +
+                            std::to_string(level_offset_.back()) + ")");
+  return frame(id).origin;
+}
+
+far_field_batch::ClusterFrames FastOperator::cluster_frames() const {
+  static_assert(sizeof(Vec3) == 3 * sizeof(double), "the collocation points are read as 3 doubles each");
+  const int L = tree_->finest_level();
+  return {cluster_origin_.data(), root_axes_.data(), level_offset_[static_cast<std::size_t>(L)], L,
+          tree_->collocation_points().data()->data(), leaf_shift_.data(), unit_scale_};
+}
 
 far_field_batch::ClusterMoments FastOperator::cluster_moments(const double* moments, const double* v) const {
   const int L = tree_->finest_level();
@@ -623,7 +658,7 @@ std::size_t FastOperator::held_bytes() const {
   std::size_t lists = 0;
   for (const RowBlock& blk : blocks_) lists += blk.bytes();
   return lists + far_coef_.bytes() + far_coef_single_.bytes() +
-         cluster_origin_.size() * sizeof(ClusterOrigin) + root_axes_.size() * sizeof(PlaneFrame) +
+         cluster_origin_.size() * sizeof(ClusterOrigin) + root_axes_.size() * sizeof(PlaneFrame) + leaf_shift_.size() * sizeof(double) +
          to_parent_.size() * sizeof(to_parent_[0]) +
          (shape_moments_.size() + child_shape_moments_.size()) * sizeof(double) + rho_.size() * sizeof(double) +
          (num_clusters - static_cast<std::size_t>(n_)) * static_cast<std::size_t>(terms_) * sizeof(double) /* moments per product, above the finest level */ +
@@ -695,8 +730,8 @@ std::size_t FastOperator::fixed_bytes(std::size_t n, std::size_t clusters, int d
 
 std::size_t FastOperator::fixed_bytes(std::size_t n, std::size_t clusters, int degree, std::size_t rows) {
   const std::size_t T = static_cast<std::size_t>(num_taylor_terms(degree));
-  // Per cluster: frame; per cluster above the finest level (clusters - n): offset to the parent
-  // and moments per product (an element's are formed when read); per element: rho; per row
+  // Per cluster above the finest level (clusters - n): frame, offset to the parent and moments
+  // per product (an element's frame and moments are formed when read); per element: rho; per row
   // held: the near/far row starts; the element moments by shape, two per root (one at level 0:
   // n = n0), and four sets per placement class of level L - 1 (none at level 0);
   // n0 = 4 n - 3 clusters since clusters = n0 (4^(L+1) - 1) / 3 and n = n0 4^L.
@@ -705,7 +740,8 @@ std::size_t FastOperator::fixed_bytes(std::size_t n, std::size_t clusters, int d
   int L = 0;  // n = n0 4^L
   while (roots > 0 && L < 31 && (roots << (2 * L)) < n) ++L;
   const std::size_t parent_shapes = L >= 1 ? roots * static_cast<std::size_t>(placement_classes(L - 1)) : 0;  // 4 T each
-  return clusters * sizeof(ClusterOrigin) + (clusters - std::min(clusters, n)) * (T + 2) * sizeof(double) + roots * sizeof(PlaneFrame) +
+  return (clusters - std::min(clusters, n)) * (sizeof(ClusterOrigin) + (T + 2) * sizeof(double)) +
+         roots * (sizeof(PlaneFrame) + 6 * sizeof(double)) +
          n * sizeof(double) + (shapes + 4 * parent_shapes) * T * sizeof(double) + rows * 2 * sizeof(std::uint32_t) +
          (rows + static_cast<std::size_t>(kRowBlock) - 1) / static_cast<std::size_t>(kRowBlock) * (sizeof(RowBlock) + 2 * sizeof(std::uint32_t));
 }

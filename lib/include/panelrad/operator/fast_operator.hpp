@@ -259,6 +259,10 @@ class FastOperator final : public RadiosityOperator {
   /// of its placement class (the number of digits 3 in its path below the root, modulo 6: each
   /// negates the triangle and turns its corners' labels), shifted once at setup.
   std::span<const double> child_shape_moments(geometry::Index k) const;
+  /// The centre A(tau) of the cluster of global id `id` as the far field expands about it, in the
+  /// far field's unit: held above the finest level; an element's is formed from its centroid and
+  /// its shape (far_field_batch::ClusterFrames), the circumcentre up to rounding.
+  Vec3 expansion_centre(geometry::Index id) const;
   /// The placement classes of the clusters of level l of a root: min(l + 1, 6).
   static geometry::Index placement_classes(int l);
   /// The far field's length unit: the power of two 2^-ilogb(diameter) (lengths are multiplied by it).
@@ -364,7 +368,8 @@ class FastOperator final : public RadiosityOperator {
   // The per-cluster and per-row arrays are sized once and filled by parallel loops (first touch).
   geometry::UninitializedVector<double> rho_;               // rho(P_i), all n rows (P_i and n_P are the tree's)
   double unit_scale_ = 1;                         // far field in units of 2^k ~ diameter (exact scaling)
-  geometry::UninitializedVector<ClusterOrigin> cluster_origin_;  // per cluster: A(tau) (scaled), its root's axes
+  geometry::UninitializedVector<ClusterOrigin> cluster_origin_;  // per cluster of levels 0..L-1: A(tau) (scaled), its root's axes
+  std::vector<double> leaf_shift_;                // per shape of level L: s (A(root) - C(root)) (scaled), 3 each
   std::vector<PlaneFrame> root_axes_;             // per root: its frame (the axes of all its clusters)
   geometry::UninitializedVector<std::array<double, 2>> to_parent_;  // per cluster of levels 0..L-1: its A in parent's frame (roots: 0)
   // Element moments Int_Delta x^p y^q dS about A(Delta) by shape: per root, the even and the odd
