@@ -203,7 +203,7 @@ void FastOperator::setup_cluster_frames() {
   root_axes_.resize(static_cast<std::size_t>(tree.num_roots()));
   for (Index r = 0; r < tree.num_roots(); ++r)
     root_axes_[static_cast<std::size_t>(r)] = make_plane_frame(unit_scale_ * tree.cluster(0, r).centre, tree.cluster(0, r).normal);
-  // Held for the clusters above the finest level, three quarters of all: the elements' origins
+  // Held for the clusters above the finest level, a quarter of all: the elements' origins
   // follow from their centroids and their shapes (leaf_shift_, far_field_batch::ClusterFrames),
   // and the offsets are read by the shift of centre from level l + 1 to l, l <= L - 2 (compute_moments).
   const Index held = level_offset_[static_cast<std::size_t>(L)];

@@ -346,6 +346,7 @@ class FastOperator final : public RadiosityOperator {
   far_field_batch::RowPoint far_row_point(geometry::Index i) const;
   /// The frame of cluster `id` (global id): its origin A(tau), its root's axes.
   PlaneFrame frame(geometry::Index id) const;
+  /// A(tau) (scaled: A) of cluster k of level l >= 1 in its parent's frame (the shift of centre of (48)).
   std::array<double, 2> offset_in_parent(int l, geometry::Index k, const Vec3& A) const;
   far_field_batch::ClusterFrames cluster_frames() const;
   /// The moments of every cluster for C columns: `moments` (compute_moments) above the finest
