@@ -260,6 +260,32 @@ TEST(MemoryAvailable, HonoursTheAddressSpaceLimit) {
 #endif
 }
 
+// The system part is MemAvailable of /proc/meminfo, read here independently with a stream before
+// and after. MemAvailable moves while other processes (or tests run beside this one) allocate, so
+// a reading counts when it lies between the two bracketing ones (16 MiB of slack: a few pages of
+// this process and the kernel's per-CPU counters); a few attempts find a quiet moment.
+TEST(MemoryAvailable, SystemPartIsMemAvailable) {
+  const auto mem_available = [] {
+    std::ifstream meminfo("/proc/meminfo");
+    for (std::string line; std::getline(meminfo, line);)
+      if (line.rfind("MemAvailable:", 0) == 0) return std::stoll(line.substr(13)) * 1024;
+    return -1LL;
+  };
+  if (mem_available() < 0) GTEST_SKIP() << "no MemAvailable in /proc/meminfo";
+  const long long slack = 16LL << 20;
+  bool between = false;
+  long long low = 0, high = 0, read = 0;
+  for (int attempt = 0; attempt < 10 && !between; ++attempt) {
+    const long long before = mem_available();
+    read = static_cast<long long>(memory_availability().system);
+    const long long after = mem_available();
+    low = std::min(before, after) - slack;
+    high = std::max(before, after) + slack;
+    between = read >= low && read <= high;
+  }
+  EXPECT_TRUE(between) << read << " B outside [" << low << ", " << high << "]";
+}
+
 // The dense level estimate is exact in its parts: the matrix n^2 doubles, the tree's estimate,
 // the collocation's vectors and the solver's work vectors.
 TEST(LevelMemoryEstimate, DensePartsAreTheKnownSizes) {

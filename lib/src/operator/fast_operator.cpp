@@ -404,7 +404,8 @@ std::shared_ptr<TargetClusters> FastOperator::make_target_clusters(const geometr
   if (plan.level < 0) return nullptr;
   const std::vector<Index> offset = level_offsets(tree);
   const double unit = far_field_unit(tree);
-  std::vector<PlaneFrame> frames(static_cast<std::size_t>(offset[static_cast<std::size_t>(plan.level) + 1]));
+  // Written by the parallel loops below, not zeroed first by one thread.
+  geometry::UninitializedVector<PlaneFrame> frames(static_cast<std::size_t>(offset[static_cast<std::size_t>(plan.level) + 1]));
   for (int l = 0; l <= plan.level; ++l) {
     const Index m = tree.level_size(l);
 #pragma omp parallel for schedule(dynamic, 256)
@@ -604,10 +605,11 @@ void FastOperator::store_coverings() {
   stats_.near_pairs = static_cast<std::size_t>(near);
   stats_.far_pairs = static_cast<std::size_t>(far);
   const std::size_t far_coef_bytes = stats_.far_pairs * static_cast<std::size_t>(terms_) * coefficient_bytes();
-  const std::size_t limit = options_.far_storage_limit ? options_.far_storage_limit : available_memory_bytes() / 2;
-  stats_.far_stored = far_coef_bytes <= limit &&
-                      (options_.expected_products <= 0 ||
-                       far_field_costs(options_.degree, coefficient_bytes()).store_pays(options_.expected_products));
+  const bool pays = options_.expected_products <= 0 ||
+                    far_field_costs(options_.degree, coefficient_bytes()).store_pays(options_.expected_products);
+  // The memory gate (files of /proc and the cgroup, serial) only when storing would pay.
+  stats_.far_stored =
+      pays && far_coef_bytes <= (options_.far_storage_limit ? options_.far_storage_limit : available_memory_bytes() / 2);
 }
 
 FastOperator::RowLists FastOperator::row_lists(std::size_t r) const {

@@ -7,6 +7,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <span>
 #include <stdexcept>
 #include <string>
 
@@ -29,27 +30,39 @@ struct Found {
   std::int32_t sources = 0, passes = 0, thread = 0, coplanar = 0;
 };
 
-// One thread's sources and handed-down clusters for the targets of one level that it took, on a
-// cache line of its own (the lists' ends change with every cluster found).
-struct alignas(64) ThreadLists {
-  std::vector<Index> source;
-  std::vector<Item> pass;
+// One thread's list, on a cache line of its own: the list's end changes with every cluster found.
+template <class T>
+struct alignas(64) ThreadList {
+  std::vector<T> items;
 };
 
-// The CSR of one level's ranges (Found) from the threads' lists: the counts by a serial prefix
-// sum into starts[first + 1 ..], the lists appended to `out` in target order, in parallel.
+// The CSR of the ranges found on levels [0, found.size()) (Found) from the threads' lists, ids
+// numbered level by level: the counts by a serial prefix sum into starts[1 ..], one resize of
+// `out`, then the lists copied in target order, in parallel.
 template <class T, class Count, class At, class ListOf>
-void append_level(const std::vector<Found>& found, std::vector<std::int64_t>& starts, std::size_t first,
-                  geometry::UninitializedVector<T>& out, Count count, At at, ListOf list_of) {
-  const Index m = static_cast<Index>(found.size());
-  for (Index k = 0; k < m; ++k)
-    starts[first + static_cast<std::size_t>(k) + 1] = starts[first + static_cast<std::size_t>(k)] + count(found[static_cast<std::size_t>(k)]);
-  out.resize(static_cast<std::size_t>(starts[first + static_cast<std::size_t>(m)]));
-#pragma omp parallel for schedule(dynamic, 256)
-  for (Index k = 0; k < m; ++k) {
-    const Found& f = found[static_cast<std::size_t>(k)];
-    const auto& list = list_of(f);
-    std::copy_n(list.begin() + at(f), count(f), out.begin() + starts[first + static_cast<std::size_t>(k)]);
+void join_levels(std::span<const std::vector<Found>> found, std::vector<std::int64_t>& starts,
+                 geometry::UninitializedVector<T>& out, Count count, At at, ListOf list_of) {
+  std::size_t id = 0;
+  for (const std::vector<Found>& level : found)
+    for (const Found& f : level) {
+      starts[id + 1] = starts[id] + count(f);
+      ++id;
+    }
+  out.resize(static_cast<std::size_t>(starts[id]));
+#pragma omp parallel
+  {
+    std::size_t first = 0;
+    for (std::size_t l = 0; l < found.size(); ++l) {
+      const std::vector<Found>& level = found[l];
+      const Index m = static_cast<Index>(level.size());
+#pragma omp for schedule(dynamic, 256) nowait
+      for (Index k = 0; k < m; ++k) {
+        const Found& f = level[static_cast<std::size_t>(k)];
+        const auto& list = list_of(l, f);
+        std::copy_n(list.begin() + at(f), count(f), out.begin() + starts[first + static_cast<std::size_t>(k)]);
+      }
+      first += level.size();
+    }
   }
 }
 
@@ -77,17 +90,19 @@ TargetClusters build_target_clusters(const geometry::ClusterTree& tree, const Pl
   const double inv_scale = 1.0 / unit_scale;  // a power of two: exact
 
   // Level by level: each target's traversal starts from what its parent handed down, and writes
-  // to its thread's lists (no allocation per target); the level's sources then join the CSR.
+  // to its thread's lists (no allocation per target). The sources of all levels join the CSR at
+  // the end, in one allocation.
   const std::size_t threads = static_cast<std::size_t>(std::max(1, omp_get_max_threads()));
-  std::vector<ThreadLists> previous_lists(threads), current_lists(threads);
-  std::vector<Found> previous, current;
+  std::vector<std::vector<Found>> found(static_cast<std::size_t>(lt) + 1);
+  std::vector<std::vector<ThreadList<Index>>> sources(static_cast<std::size_t>(lt) + 1);  // [level][thread]
+  std::vector<ThreadList<Item>> previous_pass(threads), current_pass(threads);             // [thread]
   for (int l = 0; l <= lt; ++l) {
     const Index m = tree.level_size(l);
+    std::vector<Found>& current = found[static_cast<std::size_t>(l)];
     current.assign(static_cast<std::size_t>(m), Found{});
-    for (ThreadLists& lists : current_lists) {
-      lists.source.clear();
-      lists.pass.clear();
-    }
+    std::vector<ThreadList<Index>>& level_sources = sources[static_cast<std::size_t>(l)];
+    level_sources.resize(threads);
+    for (ThreadList<Item>& pass : current_pass) pass.items.clear();
     bool failed = false;
     std::string failure;
     // Targets in chunks: below the top levels a traversal takes under a microsecond (level 5 of
@@ -96,7 +111,8 @@ TargetClusters build_target_clusters(const geometry::ClusterTree& tree, const Pl
 #pragma omp parallel
     {
       const int thread = omp_get_thread_num();
-      ThreadLists& mine = current_lists[static_cast<std::size_t>(thread)];
+      std::vector<Index>& my_sources = level_sources[static_cast<std::size_t>(thread)].items;
+      std::vector<Item>& my_pass = current_pass[static_cast<std::size_t>(thread)].items;
       std::vector<Item> stack;
 #pragma omp for schedule(dynamic, chunk)
       for (Index k = 0; k < m; ++k) try {
@@ -111,8 +127,8 @@ TargetClusters build_target_clusters(const geometry::ClusterTree& tree, const Pl
         const Index plane = tree.plane(l, k);
         Found f;
         f.thread = thread;
-        f.source_at = static_cast<std::int64_t>(mine.source.size());
-        f.pass_at = static_cast<std::int64_t>(mine.pass.size());
+        f.source_at = static_cast<std::int64_t>(my_sources.size());
+        f.pass_at = static_cast<std::int64_t>(my_pass.size());
         stack.clear();
         const auto visit = [&](const Item& first) {
           stack.push_back(first);
@@ -124,23 +140,23 @@ TargetClusters build_target_clusters(const geometry::ClusterTree& tree, const Pl
               ++f.coplanar;
             } else if (geometry::is_admissible(c, tau.centre, round_up(tau.radius + round_up(eta * Rb)), eta) &&
                        geometry::is_admissible(c, tau.centre, round_up(Rb + round_up(eta_t * tau.radius)), eta_t)) {
-              mine.source.push_back(id_of(it.level, it.k));
+              my_sources.push_back(id_of(it.level, it.k));
             } else if (it.level < L && tau.radius >= Rb) {
               for (Index child = 3; child >= 0; --child) stack.push_back({it.level + 1, 4 * it.k + child});
             } else {
-              mine.pass.push_back(it);
+              my_pass.push_back(it);
             }
           }
         };
         if (l == 0) {
           for (Index root = 0; root < tree.num_roots(); ++root) visit({0, root});
         } else {
-          const Found& parent = previous[static_cast<std::size_t>(k / 4)];
-          const std::vector<Item>& handed = previous_lists[static_cast<std::size_t>(parent.thread)].pass;
+          const Found& parent = found[static_cast<std::size_t>(l) - 1][static_cast<std::size_t>(k / 4)];
+          const std::vector<Item>& handed = previous_pass[static_cast<std::size_t>(parent.thread)].items;
           for (std::int32_t j = 0; j < parent.passes; ++j) visit(handed[static_cast<std::size_t>(parent.pass_at + j)]);
         }
-        f.sources = static_cast<std::int32_t>(static_cast<std::int64_t>(mine.source.size()) - f.source_at);
-        f.passes = static_cast<std::int32_t>(static_cast<std::int64_t>(mine.pass.size()) - f.pass_at);
+        f.sources = static_cast<std::int32_t>(static_cast<std::int64_t>(my_sources.size()) - f.source_at);
+        f.passes = static_cast<std::int32_t>(static_cast<std::int64_t>(my_pass.size()) - f.pass_at);
         current[static_cast<std::size_t>(k)] = f;
       } catch (const std::exception& e) {
 #pragma omp critical(panelrad_target_clusters)
@@ -155,17 +171,16 @@ TargetClusters build_target_clusters(const geometry::ClusterTree& tree, const Pl
       out.coplanar_roots.resize(static_cast<std::size_t>(m));
       for (Index k = 0; k < m; ++k) out.coplanar_roots[static_cast<std::size_t>(k)] = current[static_cast<std::size_t>(k)].coplanar;
     }
-    append_level(current, out.source_start, static_cast<std::size_t>(id_of(l, 0)), out.source,
-                 [](const Found& f) { return std::int64_t{f.sources}; }, [](const Found& f) { return f.source_at; },
-                 [&](const Found& f) -> const std::vector<Index>& { return current_lists[static_cast<std::size_t>(f.thread)].source; });
-    previous.swap(current);
-    previous_lists.swap(current_lists);
+    previous_pass.swap(current_pass);
   }
+  join_levels(found, out.source_start, out.source, [](const Found& f) { return std::int64_t{f.sources}; },
+              [](const Found& f) { return f.source_at; },
+              [&](std::size_t l, const Found& f) -> const std::vector<Index>& { return sources[l][static_cast<std::size_t>(f.thread)].items; });
   // The starts of the per-point coverings: what the targets of level lt hand down.
   out.start_start.assign(static_cast<std::size_t>(tree.level_size(lt)) + 1, 0);
-  append_level(previous, out.start_start, 0, out.start, [](const Found& f) { return std::int64_t{f.passes}; },
-               [](const Found& f) { return f.pass_at; },
-               [&](const Found& f) -> const std::vector<Item>& { return previous_lists[static_cast<std::size_t>(f.thread)].pass; });
+  join_levels(std::span(found).last(1), out.start_start, out.start, [](const Found& f) { return std::int64_t{f.passes}; },
+              [](const Found& f) { return f.pass_at; },
+              [&](std::size_t, const Found& f) -> const std::vector<Item>& { return previous_pass[static_cast<std::size_t>(f.thread)].items; });
   return out;
 }
 

@@ -1,46 +1,58 @@
 #include <panelrad/support/resources.hpp>
 
+#include <fcntl.h>
 #include <omp.h>
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <algorithm>
-#include <fstream>
+#include <cerrno>
+#include <charconv>
 #include <limits>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace panelrad {
 
 namespace {
-// Reads "<key>: <value> kB" from a /proc file; returns -1 when absent.
-long long read_proc_kb(const char* file, const std::string& key) {
-  std::ifstream in(file);
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.compare(0, key.size(), key) == 0 && line.size() > key.size() && line[key.size()] == ':') {
-      std::istringstream ss(line.substr(key.size() + 1));
+// At most max_bytes of a file, by read(2) into a stack piece: no stream, locale or buffer to set up
+// (the gate runs at every setup, and a setup at n = 49,152 takes 15 ms on two threads). The
+// /proc and cgroup files are a few KiB; an absent or unreadable file gives "".
+std::string read_text(const std::string& file, std::size_t max_bytes = 1 << 20) {
+  const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return {};
+  std::string text;
+  char piece[1 << 12];
+  while (text.size() < max_bytes) {
+    const ssize_t got = ::read(fd, piece, std::min(sizeof piece, max_bytes - text.size()));
+    if (got < 0 && errno == EINTR) continue;
+    if (got <= 0) break;
+    text.append(piece, static_cast<std::size_t>(got));
+  }
+  ::close(fd);
+  return text;
+}
+
+// "<key>: <value> kB" of a /proc file's text; -1 when absent.
+long long proc_kb(const std::string& text, std::string_view key) {
+  for (std::size_t at = 0; at < text.size();) {
+    const std::size_t end = std::min(text.find('\n', at), text.size());
+    const std::string_view line(text.data() + at, end - at);
+    if (line.size() > key.size() && line.substr(0, key.size()) == key && line[key.size()] == ':') {
       long long kb = -1;
-      ss >> kb;
-      return kb;
+      const char* first = line.data() + key.size() + 1;
+      const char* last = line.data() + line.size();
+      while (first < last && (*first == ' ' || *first == '\t')) ++first;
+      return std::from_chars(first, last, kb).ec == std::errc() ? kb : -1;
     }
+    at = end + 1;
   }
   return -1;
 }
 
-// At most max_bytes of a file, read in pieces of 16 KiB: the /proc and cgroup files are a few KiB,
-// and a buffer of max_bytes filled up front would cost its page faults on every call.
-std::string read_text(const std::string& file, std::size_t max_bytes = 1 << 20) {
-  std::ifstream in(file);
-  if (!in) return {};
-  std::string text;
-  char piece[1 << 14];
-  while (text.size() < max_bytes && in) {
-    in.read(piece, static_cast<std::streamsize>(std::min(sizeof piece, max_bytes - text.size())));
-    text.append(piece, static_cast<std::size_t>(in.gcount()));
-  }
-  return text;
-}
+long long read_proc_kb(const char* file, std::string_view key) { return proc_kb(read_text(file, 1 << 16), key); }
 
 // A cgroup file holding one number ("max" or a value at or above 2^62, v1's "no limit", count as
 // unlimited); -1 when absent or unlimited.
@@ -91,36 +103,33 @@ bool find_mount(const std::string& mountinfo, bool v2, CgroupMount& out) {
   return false;
 }
 
-// Headroom of the cgroup at `path` (as /proc/self/cgroup names it) and of its ancestors up to
-// the mount point; kUnlimited when none has a limit.
-std::size_t headroom_along(const CgroupMount& mount, std::string path, const std::string& fs_root, bool v2) {
+// A directory of the memory controller: the process's cgroup or one of its ancestors.
+struct MemoryCgroup {
+  std::string dir;
+  bool v2 = false;
+};
+
+// The directories of the cgroup at `path` (as /proc/self/cgroup names it) and of its ancestors up
+// to the mount point, the cgroup's own first.
+void cgroups_along(const CgroupMount& mount, std::string path, const std::string& fs_root, bool v2,
+                   std::vector<MemoryCgroup>& out) {
   // The path relative to the mount's root (a cgroup namespace shows the mount root as "/").
   if (mount.root != "/" && path.compare(0, mount.root.size(), mount.root) == 0) path = path.substr(mount.root.size());
   while (path.size() > 1 && path.back() == '/') path.pop_back();
-  const char* limit_file = v2 ? "/memory.max" : "/memory.limit_in_bytes";
-  const char* usage_file = v2 ? "/memory.current" : "/memory.usage_in_bytes";
-  const char* cache_key = v2 ? "inactive_file" : "total_inactive_file";
-  std::size_t least = MemoryAvailability::kUnlimited;
   for (;;) {
-    const std::string dir = fs_root + mount.point + (path == "/" ? "" : path);
-    const long long limit = read_limit(dir + limit_file);
-    if (limit >= 0) {
-      long long usage = read_limit(dir + usage_file);
-      usage = std::max(0LL, usage - read_stat(dir + "/memory.stat", cache_key));
-      least = std::min(least, static_cast<std::size_t>(std::max(0LL, limit - usage)));
-    }
+    out.push_back({fs_root + mount.point + (path == "/" ? "" : path), v2});
     if (path.empty() || path == "/") break;
     const std::size_t slash = path.rfind('/');
     path = slash == 0 || slash == std::string::npos ? std::string("/") : path.substr(0, slash);
   }
-  return least;
 }
-}  // namespace
 
-namespace detail {
-std::size_t cgroup_headroom(const std::string& proc_self_cgroup, const std::string& mountinfo,
-                            const std::string& fs_root) {
-  std::size_t least = MemoryAvailability::kUnlimited;
+// The memory controller's directories of this process: from the texts of /proc/self/cgroup and
+// /proc/self/mountinfo, for each hierarchy that has the controller (v2: the "0::" line; v1: the
+// line naming "memory").
+std::vector<MemoryCgroup> memory_cgroups(const std::string& proc_self_cgroup, const std::string& mountinfo,
+                                         const std::string& fs_root) {
+  std::vector<MemoryCgroup> out;
   std::istringstream lines(proc_self_cgroup);
   for (std::string line; std::getline(lines, line);) {
     // "hierarchy-id:controllers:path"
@@ -131,9 +140,30 @@ std::size_t cgroup_headroom(const std::string& proc_self_cgroup, const std::stri
     const bool v1 = ("," + controllers + ",").find(",memory,") != std::string::npos;
     if (!v2 && !v1) continue;
     CgroupMount mount;
-    if (find_mount(mountinfo, v2, mount)) least = std::min(least, headroom_along(mount, path, fs_root, v2));
+    if (find_mount(mountinfo, v2, mount)) cgroups_along(mount, path, fs_root, v2, out);
+  }
+  return out;
+}
+
+// The least headroom = limit - (usage - inactive file cache) over the directories, the cache
+// being reclaimable; kUnlimited when none has a limit. Limits and usage are read at each call.
+std::size_t headroom(const std::vector<MemoryCgroup>& cgroups) {
+  std::size_t least = MemoryAvailability::kUnlimited;
+  for (const MemoryCgroup& cg : cgroups) {
+    const long long limit = read_limit(cg.dir + (cg.v2 ? "/memory.max" : "/memory.limit_in_bytes"));
+    if (limit < 0) continue;
+    long long usage = read_limit(cg.dir + (cg.v2 ? "/memory.current" : "/memory.usage_in_bytes"));
+    usage = std::max(0LL, usage - read_stat(cg.dir + "/memory.stat", cg.v2 ? "inactive_file" : "total_inactive_file"));
+    least = std::min(least, static_cast<std::size_t>(std::max(0LL, limit - usage)));
   }
   return least;
+}
+}  // namespace
+
+namespace detail {
+std::size_t cgroup_headroom(const std::string& proc_self_cgroup, const std::string& mountinfo,
+                            const std::string& fs_root) {
+  return headroom(memory_cgroups(proc_self_cgroup, mountinfo, fs_root));
 }
 }  // namespace detail
 
@@ -167,7 +197,11 @@ MemoryAvailability memory_availability() {
     const auto limit = static_cast<std::size_t>(as.rlim_cur);
     m.address_space = limit > mapped ? limit - mapped : 0;
   }
-  m.cgroup = detail::cgroup_headroom(read_text("/proc/self/cgroup"), read_text("/proc/self/mountinfo"), "");
+  // Which cgroups hold the process is looked up once (a process is rarely moved between them);
+  // their limits and usage are read now.
+  static const std::vector<MemoryCgroup> cgroups =
+      memory_cgroups(read_text("/proc/self/cgroup"), read_text("/proc/self/mountinfo"), "");
+  m.cgroup = headroom(cgroups);
   return m;
 }
 
