@@ -43,7 +43,8 @@ struct MemoryAvailability {
   std::string binding() const;
 };
 
-/// Reads the three limits now.
+/// Reads the three limits now. Which cgroups hold the process (/proc/self/cgroup and
+/// /proc/self/mountinfo) is looked up at the first call; their limits and usage at every call.
 MemoryAvailability memory_availability();
 
 namespace detail {
