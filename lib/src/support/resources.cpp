@@ -18,8 +18,8 @@ namespace panelrad {
 
 namespace {
 // At most max_bytes of a file, by read(2) into a stack piece: no stream, locale or buffer to set up
-// (the gate runs at every setup, and a setup at n = 49,152 takes 15 ms on two threads). The
-// /proc and cgroup files are a few KiB; an absent or unreadable file gives "".
+// (the gate runs, serially, in every setup of the fast operator). The /proc and cgroup files are a
+// few KiB; an absent or unreadable file gives "".
 std::string read_text(const std::string& file, std::size_t max_bytes = 1 << 20) {
   const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) return {};
