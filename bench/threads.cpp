@@ -18,7 +18,10 @@
 //     each thread count, where the system reports it.
 //   - Before each pair, the machine's own ceiling (two_thread_ceiling): the speed-up that a fixed
 //     arithmetic workload gets from two threads at that moment, and each pair's ratio against it;
-//     before each setup pair also the first-touch ceiling, the same for touching new memory.
+//     the same for streaming memory (each thread summing an array of its own twice the size of
+//     the last-level cache), so that a pair's ratio can be read against what the host's memory
+//     system allowed two threads at that moment; before each setup pair also the first-touch
+//     ceiling, the same for touching new memory.
 //   usage: threads [--level L] [--pairs K] [--setup-pairs K] [--keep-memory] [--double | --single]
 //                  [--recompute] [--setting ETA M]...
 // Default: level 6 (n = 49,152), (0.5, 7), coefficients stored or not as the library chooses,
@@ -107,6 +110,31 @@ double first_touch_work() {
   return first;
 }
 
+// Memory streamed: the calling thread sums an array of its own, 64 MiB (twice this machine's
+// 32 MiB last-level cache, so that every pass reads main memory), with eight partial sums so that
+// the reads, not the additions, set the pace. The arrays are filled once, by
+// prepare_streaming_work, before any timing.
+double streaming_work() {
+  thread_local std::vector<double> data;
+  if (data.empty()) data.assign(std::size_t{8} << 20, 1.0);
+  double sum[8] = {};
+  for (std::size_t i = 0; i < data.size(); i += 8)
+    for (int j = 0; j < 8; ++j) sum[j] += data[i + static_cast<std::size_t>(j)];
+  double total = 0;
+  for (const double s : sum) total += s;
+  return total;
+}
+
+void prepare_streaming_work() {
+  static volatile double sink = 0;
+#pragma omp parallel num_threads(2)
+  {
+    const double r = streaming_work();
+#pragma omp critical(panelrad_bench_streaming)
+    sink = sink + r;
+  }
+}
+
 // What the machine itself allows two threads at this moment for a workload: timed on one thread
 // alone (t), then on two threads at once, each timing its own copy (t_0, t_1), three times, the
 // medians taken; the ceiling t / t_0 + t / t_1 is the speed-up of perfectly divided work. For
@@ -162,7 +190,7 @@ struct Runs {
 };
 
 void report(const char* what, const Runs& one, const Runs& two, const std::vector<double>& ceiling,
-            const std::vector<double>& touch_ceiling) {
+            const std::vector<double>& streaming_ceiling, const std::vector<double>& touch_ceiling) {
   std::vector<double> ratio, efficiency;
   for (std::size_t k = 0; k < one.seconds.size(); ++k) {
     ratio.push_back(one.seconds[k] / two.seconds[k]);
@@ -177,6 +205,8 @@ void report(const char* what, const Runs& one, const Runs& two, const std::vecto
               median(one.faults) * 4096e-6, median(two.faults) * 4096e-6);
   std::printf("  %-8s machine's ceiling median %.2fx (%.2f-%.2fx); pair / its ceiling: median %.2f", "", median(ceiling),
               *clo, *chi, median(efficiency));
+  const auto [slo, shi] = std::minmax_element(streaming_ceiling.begin(), streaming_ceiling.end());
+  std::printf("; streaming ceiling median %.2fx (%.2f-%.2fx)", median(streaming_ceiling), *slo, *shi);
   if (touch_ceiling.empty()) {
     std::printf("\n");
   } else {
@@ -220,6 +250,7 @@ int main(int argc, char** argv) {
   try {
     const Scene cube = make_paper_cube_scene();
     const Collocation col(cube, level);
+    prepare_streaming_work();
     std::printf("one thread against two on the cube, level %d, n = %d (hardware threads: %u)%s\n", level,
                 static_cast<int>(col.size()), std::thread::hardware_concurrency(),
                 keep_memory ? "; memory kept by the allocator between setups" : "");
@@ -228,6 +259,7 @@ int main(int argc, char** argv) {
       const FastOptions o = fast.options(eta, degree);
       Runs setup[2], product[2];
       std::vector<double> setup_ceiling, product_ceiling, touch_ceiling;  // two_thread_ceiling before each pair
+      std::vector<double> setup_streaming, product_streaming;
       std::vector<double> stage[2][4];  // per thread count: geometry, targets, coverings, far (FastStatistics)
       bool identical = true;
       Eigen::VectorXd reference;  // the product of the first operator, on one thread
@@ -242,6 +274,7 @@ int main(int argc, char** argv) {
       std::unique_ptr<FastOperator> op;
       for (int pair = 0; pair < setup_pairs; ++pair) {
         setup_ceiling.push_back(two_thread_ceiling(arithmetic_work));
+        setup_streaming.push_back(two_thread_ceiling(streaming_work));
         touch_ceiling.push_back(two_thread_ceiling(first_touch_work));
         for (int k = 0; k < 2; ++k) {
           const int t = (pair + k) % 2;  // 0: one thread, 1: two
@@ -257,6 +290,7 @@ int main(int argc, char** argv) {
       for (int t = 0; t < 2; ++t) apply(*op, t + 1, nullptr);  // the product's workspace, first touched
       for (int pair = 0; pair < pairs; ++pair) {
         product_ceiling.push_back(two_thread_ceiling(arithmetic_work));
+        product_streaming.push_back(two_thread_ceiling(streaming_work));
         for (int k = 0; k < 2; ++k) {
           const int t = (pair + k) % 2;
           apply(*op, t + 1, &product[t]);
@@ -266,13 +300,13 @@ int main(int argc, char** argv) {
       std::printf("(%.2f, M %d), coefficients %s, %zu far pairs, %.1f MB held\n", eta, degree,
                   !s.far_stored ? "recomputed" : o.single_precision_coefficients ? "float, stored" : "double, stored",
                   s.far_pairs, static_cast<double>(op->bytes()) / 1e6);
-      report("setup", setup[0], setup[1], setup_ceiling, touch_ceiling);
+      report("setup", setup[0], setup[1], setup_ceiling, setup_streaming, touch_ceiling);
       std::printf("  stages, median 1 / 2 threads:");
       for (std::size_t k = 0; const char* name : {"geometry", "targets", "coverings", "far"}) {
         std::printf(" %s %.4f / %.4f s%s", name, median(stage[0][k]), median(stage[1][k]), k < 3 ? "," : "\n");
         ++k;
       }
-      report("product", product[0], product[1], product_ceiling, {});
+      report("product", product[0], product[1], product_ceiling, product_streaming, {});
       std::printf("  bit-identical products (operators set up and applied on 1 and 2 threads): %s\n",
                   identical ? "yes" : "NO");
       std::fflush(stdout);
