@@ -153,13 +153,20 @@ const double* cluster_moments(const ClusterMoments& moments, std::int32_t id, in
   return buffer;
 }
 
-bool pair_coefficients(const Kernels& kernels, int M, const RowPoint& row, const PlaneFrame& frame, double* c) {
-  const PlaneFrame* f = &frame;
+bool row_coefficients(const Kernels& kernels, int M, const RowPoint& row, const ClusterFrames& frames,
+                      const std::int32_t* clusters, std::int64_t count, double* out) {
+  const int T = num_taylor_terms(M);
+  const auto fn = kernels.coefficients[M];
   FrameLanes lanes;
-  gather_frames(&f, 1, lanes);
   alignas(32) double lane_c[kLanes * kMaxTerms];
-  if (!kernels.coefficients[M](row, lanes, lane_c)) return false;
-  for (int t = 0; t < num_taylor_terms(M); ++t) c[t] = lane_c[t * kLanes];
+  for (std::int64_t j0 = 0; j0 < count; j0 += kLanes) {
+    const int in_batch = static_cast<int>(std::min<std::int64_t>(kLanes, count - j0));
+    gather_frames(frames, clusters + j0, in_batch, lanes);
+    if (!fn(row, lanes, lane_c)) return false;
+    double* c = out + j0 * T;
+    for (int w = 0; w < in_batch; ++w)
+      for (int t = 0; t < T; ++t) c[w * T + t] = lane_c[t * kLanes + w];
+  }
   return true;
 }
 

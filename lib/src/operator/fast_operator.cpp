@@ -84,15 +84,17 @@ std::pair<Index, Index> resolve_rows(const RowRange& rows, Index n) {
 //   - reading stored coefficients: the product's multiply-adds, 1.3 ns a term (40 ns a pair at
 //     T = 28, float or double), or the memory's bandwidth, 0.22 ns a byte over both cores
 //     (double at T = 36: 2.17 GB in 0.229 s), whichever is slower;
-//   - filling them at setup: 3.5 ns a term for the coefficients (one pair at a time) and the first
-//     touch of new memory, 2.2 ns a byte (setup 1.46 s double and 0.64 s float against 0.095 s
-//     recomputing, at T = 28).
+//   - filling them at setup: the coefficients and the first touch of new memory, 2.2 ns a byte
+//     (setup 1.46 s double and 0.64 s float against 0.095 s recomputing, at T = 28). The
+//     coefficients took 3.5 ns a term one pair at a time; kLanes pairs at a time they take 0.39
+//     and 0.48 of that (bench/threads --level 6 --single --keep-memory, one thread, M = 7 and 6:
+//     0.112 s against 0.285 s and 0.173 s against 0.362 s, in one run), so 1.5 ns a term.
 // So storing pays after about 17 products in single precision and almost never in double. The
 // model is fixed (no timing at run time), so the choice, and with it the product's rounding,
 // never varies between runs.
 FarFieldCosts far_field_costs(int degree, std::size_t bytes_per_term) {
   constexpr double kRecomputeNsPerTerm = 1.9, kReadNsPerTerm = 1.3, kReadNsPerByte = 0.22;
-  constexpr double kFillNsPerTerm = 3.5, kFirstTouchNsPerByte = 2.2;
+  constexpr double kFillNsPerTerm = 1.5, kFirstTouchNsPerByte = 2.2;
   const double T = num_taylor_terms(degree);
   const double bytes = T * static_cast<double>(bytes_per_term);
   FarFieldCosts c;
@@ -635,24 +637,32 @@ void FastOperator::setup_far_coefficients() {
   }
   if (!stats_.far_stored) return;
   const Index rows = row_end_ - row_begin_;
+  const far_field_batch::Kernels& kernels = far_field_batch::kernels();
+  const far_field_batch::ClusterFrames frames = cluster_frames();
+  Index failed = rows;  // the first row whose coefficients could not be formed
 #pragma omp parallel
   {
-    std::vector<double> c(T);
+    std::vector<double> c;  // a row's coefficients in double, before rounding to float
 #pragma omp for schedule(dynamic, 64)
     for (Index r = 0; r < rows; ++r) {
       const RowLists row = row_lists(static_cast<std::size_t>(r));
-      for (std::int64_t j = 0; j < row.far_count; ++j) {
-        const Index cluster = row.far_cluster[j];
-        const std::size_t at = static_cast<std::size_t>(row.far_first + j) * T;
-        if (!single) {
-          far_coefficients(row_begin_ + r, cluster, &far_coef_[at]);
-          continue;
-        }
-        far_coefficients(row_begin_ + r, cluster, c.data());
-        for (std::size_t t = 0; t < T; ++t) far_coef_single_[at + t] = static_cast<float>(c[t]);
+      if (row.far_count == 0) continue;
+      const std::size_t at = static_cast<std::size_t>(row.far_first) * T, size = static_cast<std::size_t>(row.far_count) * T;
+      if (single) c.resize(size);
+      double* out = single ? c.data() : &far_coef_[at];
+      if (!far_field_batch::row_coefficients(kernels, options_.degree, far_row_point(row_begin_ + r), frames,
+                                             row.far_cluster, row.far_count, out)) {
+#pragma omp critical(panelrad_far_coefficients_failed)
+        failed = std::min(failed, r);
+        continue;
       }
+      if (single)
+        for (std::size_t t = 0; t < size; ++t) far_coef_single_[at + t] = static_cast<float>(c[t]);
     }
   }
+  if (failed < rows)
+    throw std::invalid_argument("FastOperator: collocation point " + std::to_string(row_begin_ + failed) +
+                                " coincides with the centre A(tau) of one of its far clusters or is not finite");
 }
 
 std::size_t FastOperator::held_bytes() const {
@@ -761,14 +771,6 @@ far_field_batch::RowPoint FastOperator::far_row_point(Index i) const {
   const Vec3 P = unit_scale_ * tree_->collocation_point(i);
   const Vec3& nP = tree_->elements()[static_cast<std::size_t>(i)].normal;
   return {{P[0], P[1], P[2]}, {nP[0], nP[1], nP[2]}, rho_[static_cast<std::size_t>(i)] / pi};
-}
-
-void FastOperator::far_coefficients(Index i, Index cluster, double* c) const {
-  if (!far_field_batch::pair_coefficients(far_field_batch::kernels(), options_.degree, far_row_point(i),
-                                          frame(cluster), c))
-    throw std::invalid_argument("FastOperator: collocation point " + std::to_string(i) +
-                                " coincides with the centre A(tau) of far cluster " + std::to_string(cluster) +
-                                " or is not finite");
 }
 
 // Moments Int_tau v_n(Q) x^p y^q dS about A(tau) (48) of every cluster above the finest level:

@@ -341,7 +341,6 @@ class FastOperator final : public RadiosityOperator {
   void exact_rows(FastSelfCheckReference& reference) const;
 
   void compute_moments(const Eigen::VectorXd& v, geometry::UninitializedVector<double>& moments) const;
-  void far_coefficients(geometry::Index i, geometry::Index cluster, double* c) const;
   /// Row i's side of its far pairs (P_i in the far field's unit, n_P, rho_i/pi).
   far_field_batch::RowPoint far_row_point(geometry::Index i) const;
   /// The frame of cluster `id` (global id): its origin A(tau), its root's axes.
