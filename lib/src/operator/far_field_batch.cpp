@@ -153,8 +153,11 @@ const double* cluster_moments(const ClusterMoments& moments, std::int32_t id, in
   return buffer;
 }
 
-bool row_coefficients(const Kernels& kernels, int M, const RowPoint& row, const ClusterFrames& frames,
-                      const std::int32_t* clusters, std::int64_t count, double* out) {
+namespace {
+
+template <class Coef>
+bool row_coefficients_as(const Kernels& kernels, int M, const RowPoint& row, const ClusterFrames& frames,
+                         const std::int32_t* clusters, std::int64_t count, Coef* out) {
   const int T = num_taylor_terms(M);
   const auto fn = kernels.coefficients[M];
   FrameLanes lanes;
@@ -163,11 +166,23 @@ bool row_coefficients(const Kernels& kernels, int M, const RowPoint& row, const 
     const int in_batch = static_cast<int>(std::min<std::int64_t>(kLanes, count - j0));
     gather_frames(frames, clusters + j0, in_batch, lanes);
     if (!fn(row, lanes, lane_c)) return false;
-    double* c = out + j0 * T;
+    Coef* c = out + j0 * T;
     for (int w = 0; w < in_batch; ++w)
-      for (int t = 0; t < T; ++t) c[w * T + t] = lane_c[t * kLanes + w];
+      for (int t = 0; t < T; ++t) c[w * T + t] = static_cast<Coef>(lane_c[t * kLanes + w]);
   }
   return true;
+}
+
+}  // namespace
+
+bool row_coefficients(const Kernels& kernels, int M, const RowPoint& row, const ClusterFrames& frames,
+                      const std::int32_t* clusters, std::int64_t count, double* out) {
+  return row_coefficients_as(kernels, M, row, frames, clusters, count, out);
+}
+
+bool row_coefficients(const Kernels& kernels, int M, const RowPoint& row, const ClusterFrames& frames,
+                      const std::int32_t* clusters, std::int64_t count, float* out) {
+  return row_coefficients_as(kernels, M, row, frames, clusters, count, out);
 }
 
 bool add_recomputed_row(const Kernels& kernels, int M, const RowPoint& row, const ClusterFrames& frames,

@@ -165,11 +165,14 @@ bool add_points(const Kernels& kernels, int M, const RowPoint* points, int count
                 const std::int32_t* clusters, std::int64_t count, const ClusterMoments& moments, int C, double* out);
 
 /// The rho-scaled Taylor coefficients of `count` pairs of a row, pair j with cluster clusters[j]
-/// (its frame from `frames`), kLanes pairs at a time: pair j's T coefficients at out[j T ..].
-/// Each pair's are the same bits in any batch (the lanes are computed independently), so the
-/// same as the recomputing product's. False when some pair's P coincides with its A(tau) or is not finite.
+/// (its frame from `frames`), kLanes pairs at a time: pair j's T coefficients at out[j T ..], in
+/// double or rounded once to float. Each pair's are the same bits in any batch (the lanes are
+/// computed independently), so the same as the recomputing product's. False when some pair's P
+/// coincides with its A(tau) or is not finite.
 bool row_coefficients(const Kernels& kernels, int M, const RowPoint& row, const ClusterFrames& frames,
                       const std::int32_t* clusters, std::int64_t count, double* out);
+bool row_coefficients(const Kernels& kernels, int M, const RowPoint& row, const ClusterFrames& frames,
+                      const std::int32_t* clusters, std::int64_t count, float* out);
 
 /// Adds the far field of `count` pairs of a row, pair j with cluster clusters[j] (its frame from
 /// `frames`, moments by cluster_moments), coefficients recomputed at degree M

@@ -640,24 +640,19 @@ void FastOperator::setup_far_coefficients() {
   const far_field_batch::Kernels& kernels = far_field_batch::kernels();
   const far_field_batch::ClusterFrames frames = cluster_frames();
   Index failed = rows;  // the first row whose coefficients could not be formed
-#pragma omp parallel
-  {
-    std::vector<double> c;  // a row's coefficients in double, before rounding to float
-#pragma omp for schedule(dynamic, 64)
-    for (Index r = 0; r < rows; ++r) {
-      const RowLists row = row_lists(static_cast<std::size_t>(r));
-      if (row.far_count == 0) continue;
-      const std::size_t at = static_cast<std::size_t>(row.far_first) * T, size = static_cast<std::size_t>(row.far_count) * T;
-      if (single) c.resize(size);
-      double* out = single ? c.data() : &far_coef_[at];
-      if (!far_field_batch::row_coefficients(kernels, options_.degree, far_row_point(row_begin_ + r), frames,
-                                             row.far_cluster, row.far_count, out)) {
+#pragma omp parallel for schedule(dynamic, 64)
+  for (Index r = 0; r < rows; ++r) {
+    const RowLists row = row_lists(static_cast<std::size_t>(r));
+    const std::size_t at = static_cast<std::size_t>(row.far_first) * T;
+    const far_field_batch::RowPoint point = far_row_point(row_begin_ + r);
+    const bool formed =
+        single ? far_field_batch::row_coefficients(kernels, options_.degree, point, frames, row.far_cluster,
+                                                   row.far_count, far_coef_single_.data() + at)
+               : far_field_batch::row_coefficients(kernels, options_.degree, point, frames, row.far_cluster,
+                                                   row.far_count, far_coef_.data() + at);
+    if (!formed) {
 #pragma omp critical(panelrad_far_coefficients_failed)
-        failed = std::min(failed, r);
-        continue;
-      }
-      if (single)
-        for (std::size_t t = 0; t < size; ++t) far_coef_single_[at + t] = static_cast<float>(c[t]);
+      failed = std::min(failed, r);
     }
   }
   if (failed < rows)
