@@ -21,14 +21,25 @@ const std::string kCornell = std::string(PANELRAD_SOURCE_DIR) + "/examples/scene
 
 CliRun run(const std::string& args) { return panelrad::testing::run_cli(args); }
 
-// An output prefix in a fresh directory (the outputs are probed before the solve; a refusal
-// leaves the directory empty).
-std::string out_prefix() {
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / ("panelrad_cli_memory_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  return (dir / "x").string();
+// This process's output directory (the outputs are probed before the solve; a refusal leaves it
+// empty), removed with everything in it when the tests end.
+std::filesystem::path out_dir() {
+  return std::filesystem::temp_directory_path() / ("panelrad_cli_memory_" + std::to_string(::getpid()));
 }
+
+std::string out_prefix() {
+  std::filesystem::create_directories(out_dir());
+  return (out_dir() / "x").string();
+}
+
+class RemoveOutDir : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    std::error_code ec;
+    std::filesystem::remove_all(out_dir(), ec);
+  }
+};
+[[maybe_unused]] ::testing::Environment* const kRemoveOutDir = ::testing::AddGlobalTestEnvironment(new RemoveOutDir);
 
 // Runs the CLI under `ulimit -v kb` (RLIMIT_AS). The CLI binary is built with the same flags as
 // this test, so under AddressSanitizer (terabytes of shadow mappings) this cannot work: skipped.
@@ -194,7 +205,6 @@ TEST(CliOptions, EqualsFormAndRepeatedOptions) {
   EXPECT_CONTAINS(repeated.output, "n = 80 (level 1)");
   // The first value of a repeated option is checked too.
   EXPECT_EQ(run("solve " + lamp + " --levels 99 --levels 1 --out " + prefix).status, 2);
-  std::filesystem::remove_all(std::filesystem::path(prefix).parent_path());
 }
 
 // --help (and help COMMAND) print the command's usage on stdout with status 0; --version too.
@@ -220,7 +230,6 @@ TEST(CliOptions, HelpAndVersion) {
 TEST(CliOptions, MaxElementsBelowTheCoarseMeshSaysWhatItDid) {
   const CliRun r = run("solve " + kCornell + " --max-elements 5 --quiet --formats csv --out " + out_prefix());
   EXPECT_CONTAINS(r.output, "--max-elements 5 is below the scene's 36 triangles (n0): solving level 0, n = 36");
-  std::filesystem::remove_all(std::filesystem::path(out_prefix()).parent_path());
 }
 
 }  // namespace
