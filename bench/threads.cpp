@@ -1,10 +1,16 @@
 // How the fast operator of section 4 scales from one thread to two, on the paper's cube (31):
 // setup (cluster frames, coverings (42), near field (43), far coefficients (44)-(45) when stored)
-// and the product K_n v (43), timed in pairs inside one process, one thread and two threads
-// back to back, the order swapped from pair to pair. A virtual machine's speed drifts from one
-// minute to the next (its host's other tenants, the host's memory); a pair sees the same drift,
-// so the ratio of a pair measures the threads, and the median over pairs is quoted with the
-// least and greatest pair. Beside it: the ratio of the least times of each thread count (the
+// and the product K_n v (43), timed in pairs inside one process. A pair is three runs back to
+// back, their order rotated from pair to pair: one thread on the first processor, one thread on
+// the second, and two threads, one on each (every thread pinned). A virtual machine's speed
+// drifts from one minute to the next (its host's other tenants, the host's memory); a pair sees
+// the same drift, so the ratio of a pair, the faster lone processor's time over the two
+// threads' time, measures the threads, and the median over pairs is quoted with the least and
+// greatest pair. A host also lets other tenants share the core under one processor for seconds
+// at a time, slowing that processor alone: the lone runs on each processor give each pair its
+// own ceiling, t / t_0 + t / t_1 with t the faster of the two lone times t_0, t_1 (the speed-up
+// of perfectly divided work on those two processors as they ran), and the pair's ratio is also
+// read against it: that quotient is the code's share. Beside it: the ratio of the least times of each thread count (the
 // machine's noise only adds time, so the least of K runs is the least disturbed). Each pair also
 // checks that both thread counts give the same bits: the operators set up on one and on two
 // threads, applied on one and on two threads.
@@ -14,8 +20,8 @@
 //     touched for the first time are counted (minor page faults). --keep-memory has the
 //     allocator keep all freed memory, so that setups after the first measure the code apart
 //     from the page faults. The first setup of a process, on memory new to it, is bench/product's.
-//   - Product: on the last operator set up, one product on each thread count first (the
-//     product's workspace), then --pairs K pairs.
+//   - Product: on the last operator set up, one product on each placement first (the product's
+//     workspace), then --pairs K pairs.
 //   - The host's share of the time taken from this machine (steal, /proc/stat) during the runs of
 //     each thread count, where the system reports it.
 //   - Before each pair, the machine's own ceiling (two_thread_ceiling): the speed-up that a fixed
@@ -24,10 +30,12 @@
 //     the last-level cache), so that a pair's ratio can be read against what the host's memory
 //     system allowed two threads at that moment; before each setup pair also the first-touch
 //     ceiling, the same for touching new memory.
-//   usage: threads [--level L] [--pairs K] [--setup-pairs K] [--keep-memory] [--double | --single]
-//                  [--recompute] [--setting ETA M]...
+//   usage: threads [--level L] [--pairs K] [--setup-pairs K] [--keep-memory] [--unpinned]
+//                  [--double | --single] [--recompute] [--setting ETA M]...
 // Default: level 6 (n = 49,152), (0.5, 7), coefficients stored or not as the library chooses,
-// 9 product pairs, 5 setup pairs.
+// 9 product pairs, 5 setup pairs. --unpinned leaves the threads where the system puts them, as in
+// a user's run (the two lone runs then are two one-thread runs anywhere); so does a process
+// allowed fewer than two processors.
 #include "fast_settings.hpp"
 #include <panelrad/operator/collocation.hpp>
 #include <panelrad/operator/fast_operator.hpp>
@@ -49,6 +57,8 @@
 
 #include <malloc.h>
 #include <omp.h>
+#include <pthread.h>
+#include <sched.h>
 #include <sys/mman.h>
 #include <sys/resource.h>
 
@@ -137,6 +147,43 @@ void prepare_streaming_work() {
   }
 }
 
+// The processors this process may run on (its affinity mask), in order.
+std::vector<int> allowed_processors() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  std::vector<int> cpus;
+  if (sched_getaffinity(0, sizeof set, &set) != 0) return cpus;
+  for (int c = 0; c < CPU_SETSIZE; ++c)
+    if (CPU_ISSET(c, &set)) cpus.push_back(c);
+  return cpus;
+}
+
+// Where a run's threads are: the first processor alone, the second alone, or both.
+enum Placement { kFirstAlone = 0, kSecondAlone = 1, kBoth = 2 };
+
+void pin_calling_thread(int cpu) {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  CPU_SET(cpu, &set);
+  pthread_setaffinity_np(pthread_self(), sizeof set, &set);
+}
+
+// Sets the thread count of the library's parallel regions and pins their threads: the calling
+// thread (OpenMP's thread 0) alone on cpus[0] or cpus[1], or thread t of two on cpus[t] (OpenMP
+// keeps its threads from region to region, so the pinning holds for the run). Unpinned with
+// fewer than two processors.
+void place(Placement where, const std::vector<int>& cpus) {
+  const int threads = where == kBoth ? 2 : 1;
+  set_threads(threads);
+  if (cpus.size() < 2) return;
+  if (where != kBoth) {
+    pin_calling_thread(cpus[static_cast<std::size_t>(where)]);
+    return;
+  }
+#pragma omp parallel num_threads(2)
+  pin_calling_thread(cpus[static_cast<std::size_t>(omp_get_thread_num() & 1)]);
+}
+
 // What the machine itself allows two threads at this moment for a workload: timed on one thread
 // alone (t), then on two threads at once, each timing its own copy (t_0, t_1), three times, the
 // medians taken; the ceiling t / t_0 + t / t_1 is the speed-up of perfectly divided work. For
@@ -191,26 +238,50 @@ struct Runs {
   }
 };
 
-void report(const char* what, const Runs& one, const Runs& two, const std::vector<double>& ceiling,
+// The pairs' times: runs[p] is every pair's time with placement p; pair k's one-thread time is
+// the faster lone processor's.
+void report(const char* what, const Runs (&runs)[3], const std::vector<double>& ceiling,
             const std::vector<double>& streaming_ceiling, const std::vector<double>& touch_ceiling) {
-  std::vector<double> ratio, efficiency;
-  for (std::size_t k = 0; k < one.seconds.size(); ++k) {
-    ratio.push_back(one.seconds[k] / two.seconds[k]);
+  const Runs& two = runs[kBoth];
+  std::vector<double> one, ratio, own_ceiling, own_efficiency, efficiency;
+  for (std::size_t k = 0; k < two.seconds.size(); ++k) {
+    const double t0 = runs[kFirstAlone].seconds[k], t1 = runs[kSecondAlone].seconds[k];
+    one.push_back(std::min(t0, t1));
+    ratio.push_back(one.back() / two.seconds[k]);
+    own_ceiling.push_back(one.back() / t0 + one.back() / t1);
+    own_efficiency.push_back(ratio.back() / own_ceiling.back());
     efficiency.push_back(ratio.back() / ceiling[k]);
   }
   const auto [lo, hi] = std::minmax_element(ratio.begin(), ratio.end());
-  const auto [clo, chi] = std::minmax_element(ceiling.begin(), ceiling.end());
   std::printf("  %-8s median %.4f / %.4f s = %.2fx; pairs: median %.2fx, range %.2f-%.2fx (%zu); steal %s / %s; "
               "new pages %.1f / %.1f MB\n",
-              what, median(one.seconds), median(two.seconds), median(one.seconds) / median(two.seconds),
-              median(ratio), *lo, *hi, ratio.size(), one.steal().c_str(), two.steal().c_str(),
-              median(one.faults) * 4096e-6, median(two.faults) * 4096e-6);
+              what, median(one), median(two.seconds), median(one) / median(two.seconds), median(ratio), *lo, *hi,
+              ratio.size(), runs[kFirstAlone].steal().c_str(), two.steal().c_str(),
+              median(runs[kFirstAlone].faults) * 4096e-6, median(two.faults) * 4096e-6);
   // The least time of each thread count: the machine's noise only ever adds time (a tenant, a
   // slower host, steal), so the least of K runs is the estimate least disturbed by it.
-  const double best_one = *std::min_element(one.seconds.begin(), one.seconds.end());
+  const double best_one = *std::min_element(one.begin(), one.end());
   const double best_two = *std::min_element(two.seconds.begin(), two.seconds.end());
-  std::printf("  %-8s best of %zu: %.4f / %.4f s = %.2fx\n", "", one.seconds.size(), best_one, best_two,
-              best_one / best_two);
+  std::printf("  %-8s best of %zu: %.4f / %.4f s = %.2fx\n", "", one.size(), best_one, best_two, best_one / best_two);
+  const auto [olo, ohi] = std::minmax_element(own_ceiling.begin(), own_ceiling.end());
+  const auto [elo, ehi] = std::minmax_element(own_efficiency.begin(), own_efficiency.end());
+  std::printf("  %-8s each processor alone: median %.4f / %.4f s; the pairs' own ceiling median %.2fx (%.2f-%.2fx); "
+              "pair / its own ceiling: median %.2f (%.2f-%.2f)\n",
+              "", median(runs[kFirstAlone].seconds), median(runs[kSecondAlone].seconds), median(own_ceiling), *olo, *ohi,
+              median(own_efficiency), *elo, *ehi);
+  // The pairs whose processors ran alone at nearly one speed (own ceiling >= 1.9x: within about
+  // 10% of each other): what two threads give where the host gave two whole processors.
+  std::vector<double> even;
+  for (std::size_t k = 0; k < ratio.size(); ++k)
+    if (own_ceiling[k] >= 1.9) even.push_back(ratio[k]);
+  if (even.empty()) {
+    std::printf("  %-8s pairs with an own ceiling >= 1.90x: none of %zu\n", "", ratio.size());
+  } else {
+    const auto [vlo, vhi] = std::minmax_element(even.begin(), even.end());
+    std::printf("  %-8s pairs with an own ceiling >= 1.90x: %zu of %zu, median %.2fx, range %.2f-%.2fx\n", "",
+                even.size(), ratio.size(), median(even), *vlo, *vhi);
+  }
+  const auto [clo, chi] = std::minmax_element(ceiling.begin(), ceiling.end());
   std::printf("  %-8s machine's ceiling median %.2fx (%.2f-%.2fx); pair / its ceiling: median %.2f", "", median(ceiling),
               *clo, *chi, median(efficiency));
   const auto [slo, shi] = std::minmax_element(streaming_ceiling.begin(), streaming_ceiling.end());
@@ -231,7 +302,7 @@ bool same_bits(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
 
 int main(int argc, char** argv) {
   int level = 6, pairs = 9, setup_pairs = 5;
-  bool keep_memory = false;
+  bool keep_memory = false, unpinned = false;
   bench::FastSettings fast;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--level") && i + 1 < argc) {
@@ -242,8 +313,11 @@ int main(int argc, char** argv) {
       setup_pairs = std::max(1, std::atoi(argv[++i]));
     } else if (!std::strcmp(argv[i], "--keep-memory")) {
       keep_memory = true;
+    } else if (!std::strcmp(argv[i], "--unpinned")) {
+      unpinned = true;
     } else if (!fast.parse(i, argc, argv)) {
-      std::cerr << "usage: threads [--level L] [--pairs K] [--setup-pairs K] [--keep-memory] [--double | --single] "
+      std::cerr << "usage: threads [--level L] [--pairs K] [--setup-pairs K] [--keep-memory] [--unpinned] "
+                   "[--double | --single] "
                    "[--recompute] [--setting ETA M]...\n";
       return 2;
     }
@@ -262,60 +336,72 @@ int main(int argc, char** argv) {
     std::printf("one thread against two on the cube, level %d, n = %d (hardware threads: %u)%s\n", level,
                 static_cast<int>(col.size()), std::thread::hardware_concurrency(),
                 keep_memory ? "; memory kept by the allocator between setups" : "");
+    const std::vector<int> cpus = unpinned ? std::vector<int>{} : allowed_processors();
+    if (unpinned)
+      std::printf("threads not pinned (--unpinned): the two lone runs are one-thread runs wherever the system puts them\n");
+    else if (cpus.size() >= 2)
+      std::printf("threads pinned: one thread on processor %d, then on %d; two threads on %d and %d\n", cpus[0], cpus[1],
+                  cpus[0], cpus[1]);
+    else
+      std::printf("one processor allowed: threads not pinned, the two lone runs on the same processor\n");
     const Eigen::VectorXd v = Eigen::VectorXd::LinSpaced(col.size(), 0.25, 1.0);
     for (const auto& [eta, degree] : fast.settings) {
       const FastOptions o = fast.options(eta, degree);
-      Runs setup[2], product[2];
+      Runs setup[3], product[3];  // per Placement
       std::vector<double> setup_ceiling, product_ceiling, touch_ceiling;  // two_thread_ceiling before each pair
       std::vector<double> setup_streaming, product_streaming;
-      std::vector<double> stage[2][4];  // per thread count: geometry, targets, coverings, far (FastStatistics)
+      std::vector<double> stage[3][4];  // per Placement: geometry, targets, coverings, far (FastStatistics)
       bool identical = true;
       Eigen::VectorXd reference;  // the product of the first operator, on one thread
       Eigen::VectorXd y = Eigen::VectorXd::Zero(col.size());  // allocated before any timing
-      const auto apply = [&](const FastOperator& op, int threads, Runs* runs) {
-        set_threads(threads);
+      const auto apply = [&](const FastOperator& op, Placement where, Runs* runs) {
+        place(where, cpus);
         if (runs) runs->time([&] { op.apply(v, y); });
         else op.apply(v, y);
         if (reference.size() == 0) reference = y;
         identical = identical && same_bits(y, reference);
       };
+      const auto ceilings = [&](std::vector<double>& arithmetic, std::vector<double>& streaming) {
+        place(kBoth, cpus);  // the lone workload on the first processor
+        arithmetic.push_back(two_thread_ceiling(arithmetic_work));
+        streaming.push_back(two_thread_ceiling(streaming_work));
+      };
       std::unique_ptr<FastOperator> op;
       for (int pair = 0; pair < setup_pairs; ++pair) {
-        setup_ceiling.push_back(two_thread_ceiling(arithmetic_work));
-        setup_streaming.push_back(two_thread_ceiling(streaming_work));
+        ceilings(setup_ceiling, setup_streaming);
         touch_ceiling.push_back(two_thread_ceiling(first_touch_work));
-        for (int k = 0; k < 2; ++k) {
-          const int t = (pair + k) % 2;  // 0: one thread, 1: two
+        for (int k = 0; k < 3; ++k) {
+          const Placement where = static_cast<Placement>((pair + k) % 3);
           op.reset();  // every setup finds the allocator as the one before it left it
-          set_threads(t + 1);
-          setup[t].time([&] { op = std::make_unique<FastOperator>(col, o); });
+          place(where, cpus);
+          setup[where].time([&] { op = std::make_unique<FastOperator>(col, o); });
           const FastStatistics& st = op->statistics();
           for (std::size_t j = 0; const double s : {st.geometry_s, st.targets_s, st.covering_s, st.far_s})
-            stage[t][j++].push_back(s);
-          apply(*op, t + 1, nullptr);  // the same bits as the other thread count's operator
+            stage[where][j++].push_back(s);
+          apply(*op, where, nullptr);  // the same bits as the other placements' operators
         }
       }
-      for (int t = 0; t < 2; ++t) apply(*op, t + 1, nullptr);  // the product's workspace, first touched
+      for (const Placement where : {kFirstAlone, kSecondAlone, kBoth}) apply(*op, where, nullptr);  // workspace
       for (int pair = 0; pair < pairs; ++pair) {
-        product_ceiling.push_back(two_thread_ceiling(arithmetic_work));
-        product_streaming.push_back(two_thread_ceiling(streaming_work));
-        for (int k = 0; k < 2; ++k) {
-          const int t = (pair + k) % 2;
-          apply(*op, t + 1, &product[t]);
+        ceilings(product_ceiling, product_streaming);
+        for (int k = 0; k < 3; ++k) {
+          const Placement where = static_cast<Placement>((pair + k) % 3);
+          apply(*op, where, &product[where]);
         }
       }
       const FastStatistics& s = op->statistics();
       std::printf("(%.2f, M %d), coefficients %s, %zu far pairs, %.1f MB held\n", eta, degree,
                   !s.far_stored ? "recomputed" : o.single_precision_coefficients ? "float, stored" : "double, stored",
                   s.far_pairs, static_cast<double>(op->bytes()) / 1e6);
-      report("setup", setup[0], setup[1], setup_ceiling, setup_streaming, touch_ceiling);
-      std::printf("  stages, median 1 / 2 threads:");
+      report("setup", setup, setup_ceiling, setup_streaming, touch_ceiling);
+      std::printf("  stages, median first processor alone / both:");
       for (std::size_t k = 0; const char* name : {"geometry", "targets", "coverings", "far"}) {
-        std::printf(" %s %.4f / %.4f s%s", name, median(stage[0][k]), median(stage[1][k]), k < 3 ? "," : "\n");
+        std::printf(" %s %.4f / %.4f s%s", name, median(stage[kFirstAlone][k]), median(stage[kBoth][k]),
+                    k < 3 ? "," : "\n");
         ++k;
       }
-      report("product", product[0], product[1], product_ceiling, product_streaming, {});
-      std::printf("  bit-identical products (operators set up and applied on 1 and 2 threads): %s\n",
+      report("product", product, product_ceiling, product_streaming, {});
+      std::printf("  bit-identical products (operators set up and applied on each placement): %s\n",
                   identical ? "yes" : "NO");
       std::fflush(stdout);
       if (!identical) return 1;
