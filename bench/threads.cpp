@@ -8,12 +8,11 @@
 // threads' time, measures the threads, and the median over pairs is quoted with the least and
 // greatest pair. A host also lets other tenants share the core under one processor for seconds
 // at a time, slowing that processor alone: the lone runs on each processor give each pair its
-// own ceiling, t / t_0 + t / t_1 with t the faster of the two lone times t_0, t_1 (the speed-up
-// of perfectly divided work on those two processors as they ran), and the pair's ratio is also
-// read against it: that quotient is the code's share. Beside it: the ratio of the least times of each thread count (the
+// own ceiling, t / t_0 + t / t_1 with t the lesser of the two lone times t_0, t_1 (the speed-up
+// of perfectly divided work on those two processors as they ran), and the pair's ratio over it
+// is the code's share. Beside them: the ratio of the least times of one thread and of two (the
 // machine's noise only adds time, so the least of K runs is the least disturbed). Each pair also
-// checks that both thread counts give the same bits: the operators set up on one and on two
-// threads, applied on one and on two threads.
+// checks that every placement gives the same bits: the operators set up on each, applied on each.
 //   - Setup: the operator before is released first. Its memory is reused as far as the allocator
 //     keeps it: glibc returns blocks above 32 MiB when they are freed, so such arrays (the
 //     cluster frames from n ~ 786,432 on) are first touched again by every setup. The pages
@@ -230,6 +229,12 @@ struct Runs {
     ticks.total += after.total - before.total;
     ticks.steal += after.steal - before.steal;
   }
+  void add(const Runs& other) {
+    seconds.insert(seconds.end(), other.seconds.begin(), other.seconds.end());
+    faults.insert(faults.end(), other.faults.begin(), other.faults.end());
+    ticks.total += other.ticks.total;
+    ticks.steal += other.ticks.steal;
+  }
   std::string steal() const {
     if (ticks.total == 0) return "n/a";
     char s[32];
@@ -252,12 +257,14 @@ void report(const char* what, const Runs (&runs)[3], const std::vector<double>& 
     own_efficiency.push_back(ratio.back() / own_ceiling.back());
     efficiency.push_back(ratio.back() / ceiling[k]);
   }
+  Runs alone = runs[kFirstAlone];  // steal and new pages of one thread: both lone placements
+  alone.add(runs[kSecondAlone]);
   const auto [lo, hi] = std::minmax_element(ratio.begin(), ratio.end());
   std::printf("  %-8s median %.4f / %.4f s = %.2fx; pairs: median %.2fx, range %.2f-%.2fx (%zu); steal %s / %s; "
               "new pages %.1f / %.1f MB\n",
               what, median(one), median(two.seconds), median(one) / median(two.seconds), median(ratio), *lo, *hi,
-              ratio.size(), runs[kFirstAlone].steal().c_str(), two.steal().c_str(),
-              median(runs[kFirstAlone].faults) * 4096e-6, median(two.faults) * 4096e-6);
+              ratio.size(), alone.steal().c_str(), two.steal().c_str(), median(alone.faults) * 4096e-6,
+              median(two.faults) * 4096e-6);
   // The least time of each thread count: the machine's noise only ever adds time (a tenant, a
   // slower host, steal), so the least of K runs is the estimate least disturbed by it.
   const double best_one = *std::min_element(one.begin(), one.end());
