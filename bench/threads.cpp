@@ -42,6 +42,7 @@
 #include <panelrad/support/resources.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <climits>
 #include <cstdio>
 #include <cstdlib>
@@ -160,11 +161,14 @@ std::vector<int> allowed_processors() {
 // Where a run's threads are: the first processor alone, the second alone, or both.
 enum Placement { kFirstAlone = 0, kSecondAlone = 1, kBoth = 2 };
 
+// Whether every pinning so far took effect (the system may refuse a processor).
+std::atomic<bool> pinning_held{true};
+
 void pin_calling_thread(int cpu) {
   cpu_set_t set;
   CPU_ZERO(&set);
   CPU_SET(cpu, &set);
-  pthread_setaffinity_np(pthread_self(), sizeof set, &set);
+  if (pthread_setaffinity_np(pthread_self(), sizeof set, &set) != 0) pinning_held = false;
 }
 
 // Sets the thread count of the library's parallel regions and pins their threads: the calling
@@ -408,6 +412,8 @@ int main(int argc, char** argv) {
         ++k;
       }
       report("product", product, product_ceiling, product_streaming, {});
+      if (!pinning_held)
+        std::printf("  pinning failed at least once: the system refused a processor, so some runs were not pinned\n");
       std::printf("  bit-identical products (operators set up and applied on each placement): %s\n",
                   identical ? "yes" : "NO");
       std::fflush(stdout);
