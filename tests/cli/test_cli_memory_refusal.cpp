@@ -21,25 +21,19 @@ const std::string kCornell = std::string(PANELRAD_SOURCE_DIR) + "/examples/scene
 
 CliRun run(const std::string& args) { return panelrad::testing::run_cli(args); }
 
-// This process's output directory (the outputs are probed before the solve; a refusal leaves it
-// empty), removed with everything in it when the tests end.
-std::filesystem::path out_dir() {
-  return std::filesystem::temp_directory_path() / ("panelrad_cli_memory_" + std::to_string(::getpid()));
-}
-
-std::string out_prefix() {
-  std::filesystem::create_directories(out_dir());
-  return (out_dir() / "x").string();
-}
-
-class RemoveOutDir : public ::testing::Environment {
- public:
-  void TearDown() override {
-    std::error_code ec;
-    std::filesystem::remove_all(out_dir(), ec);
-  }
+// The suites' fixtures: a fresh directory per test for the outputs (probed before the solve; a
+// refusal leaves it empty), removed afterwards (TempDirTest).
+class CliMemoryRefusal : public panelrad::testing::TempDirTest {
+ protected:
+  CliMemoryRefusal() : TempDirTest("panelrad_cli_memory") {}
+  std::string out_prefix() const { return (dir_ / "x").string(); }
 };
-[[maybe_unused]] ::testing::Environment* const kRemoveOutDir = ::testing::AddGlobalTestEnvironment(new RemoveOutDir);
+
+class CliOptions : public panelrad::testing::TempDirTest {
+ protected:
+  CliOptions() : TempDirTest("panelrad_cli_options") {}
+  std::string out_prefix() const { return (dir_ / "x").string(); }
+};
 
 // Runs the CLI under `ulimit -v kb` (RLIMIT_AS). The CLI binary is built with the same flags as
 // this test, so under AddressSanitizer (terabytes of shadow mappings) this cannot work: skipped.
@@ -80,7 +74,7 @@ void expect_refused(const CliRun& r, const std::string& n) {
 #endif
 
 // Cornell box, n0 = 36: level 5 dense is n = 36864, a 10.9 GB matrix.
-TEST(CliMemoryRefusal, DenseSolveUnderAnAddressSpaceLimit) {
+TEST_F(CliMemoryRefusal, DenseSolveUnderAnAddressSpaceLimit) {
   SKIP_UNDER_ASAN();
   double s = 0;
   const CliRun r = run_limited(kSixGB, "solve " + kCornell + " --levels 5 --method dense --formats csv --out " + out_prefix(), &s);
@@ -90,7 +84,7 @@ TEST(CliMemoryRefusal, DenseSolveUnderAnAddressSpaceLimit) {
 }
 
 // Level 10: n = 37,748,736; the cluster tree alone needs 8 GB.
-TEST(CliMemoryRefusal, AutomaticSolveUnderAnAddressSpaceLimit) {
+TEST_F(CliMemoryRefusal, AutomaticSolveUnderAnAddressSpaceLimit) {
   SKIP_UNDER_ASAN();
   double s = 0;
   const CliRun r = run_limited(kSixGB, "solve " + kCornell + " --levels 10 --formats csv --out " + out_prefix(), &s);
@@ -99,7 +93,7 @@ TEST(CliMemoryRefusal, AutomaticSolveUnderAnAddressSpaceLimit) {
   EXPECT_CONTAINS(r.output, "cluster tree 8.15 GB");  // ClusterTree::estimate_bytes(36, 10)
 }
 
-TEST(CliMemoryRefusal, CubeLevelElevenUnderAnAddressSpaceLimit) {
+TEST_F(CliMemoryRefusal, CubeLevelElevenUnderAnAddressSpaceLimit) {
   SKIP_UNDER_ASAN();
   double s = 0;
   const CliRun r = run_limited(kSixGB, "cube --levels 11 --min-level 11", &s);
@@ -108,7 +102,7 @@ TEST(CliMemoryRefusal, CubeLevelElevenUnderAnAddressSpaceLimit) {
 }
 
 // --levels 12 (levels 0..12): the first level that cannot fit is refused before level 0 runs.
-TEST(CliMemoryRefusal, CubeLevelsAreAllCheckedBeforeLevelZero) {
+TEST_F(CliMemoryRefusal, CubeLevelsAreAllCheckedBeforeLevelZero) {
   SKIP_UNDER_ASAN();
   const CliRun r = run_limited(kSixGB, "cube --levels 12");
   std::cout << "[refusal] " << r.output;
@@ -120,7 +114,7 @@ TEST(CliMemoryRefusal, CubeLevelsAreAllCheckedBeforeLevelZero) {
 
 // Without a limit of our own, level 12 (tree ~43 GB) is beyond this 24 GB machine: refused at
 // once too, with the estimate (skipped on a machine that could hold it).
-TEST(CliMemoryRefusal, CubeLevelTwelveIsRefusedAtOnce) {
+TEST_F(CliMemoryRefusal, CubeLevelTwelveIsRefusedAtOnce) {
   const CliRun r = run("cube --levels 12");
   if (r.status == 0) GTEST_SKIP() << "this machine holds level 12";
   EXPECT_EQ(r.status, 1) << r.output;
@@ -128,7 +122,7 @@ TEST(CliMemoryRefusal, CubeLevelTwelveIsRefusedAtOnce) {
   EXPECT_EQ(r.output.find("max error"), std::string::npos) << r.output;
 }
 
-TEST(CliOptions, ThreadsBeyondWhatCanHelpAreAUsageError) {
+TEST_F(CliOptions, ThreadsBeyondWhatCanHelpAreAUsageError) {
   for (const std::string& cmd : {std::string("cube --levels 0"), "solve " + kCornell + " --out /nonexistent-dir/x"}) {
     const CliRun r = run(cmd + " --threads 1024");
     EXPECT_EQ(r.status, 2) << r.output;
@@ -139,7 +133,7 @@ TEST(CliOptions, ThreadsBeyondWhatCanHelpAreAUsageError) {
   EXPECT_EQ(run("cube --levels 0 --threads -1").status, 2);
 }
 
-TEST(CliOptions, CubeRuleIsCheckedAtParseTime) {
+TEST_F(CliOptions, CubeRuleIsCheckedAtParseTime) {
   const CliRun r = run("cube --near quadrature --rule stroud9 --levels 0");
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_CONTAINS(r.output, "unknown quadrature rule 'stroud9'");
@@ -149,7 +143,7 @@ TEST(CliOptions, CubeRuleIsCheckedAtParseTime) {
   EXPECT_EQ(run("cube --near quadrature --rule degree4 --levels 0").status, 0);
 }
 
-TEST(CliOptions, TolRangeIsShownWithItsRealBounds) {
+TEST_F(CliOptions, TolRangeIsShownWithItsRealBounds) {
   for (const std::string& cmd : {std::string("cube"), "solve " + kCornell}) {
     const CliRun r = run(cmd + " --tol 1e-20");
     EXPECT_EQ(r.status, 2) << r.output;
@@ -158,7 +152,7 @@ TEST(CliOptions, TolRangeIsShownWithItsRealBounds) {
 }
 
 // Every bad value is a usage error naming the option and the accepted range or names.
-TEST(CliOptions, BadValuesNameTheOptionAndWhy) {
+TEST_F(CliOptions, BadValuesNameTheOptionAndWhy) {
   const struct {
     const char* args;
     const char* message;
@@ -193,7 +187,7 @@ TEST(CliOptions, BadValuesNameTheOptionAndWhy) {
 
 // --name=value is the same as --name value; of a repeated option the last one counts (as
 // before the options were parsed with CLI11). prism_lamp has n0 = 20: level 1 is n = 80.
-TEST(CliOptions, EqualsFormAndRepeatedOptions) {
+TEST_F(CliOptions, EqualsFormAndRepeatedOptions) {
   const std::string lamp = std::string(PANELRAD_SOURCE_DIR) + "/examples/scenes/prism_lamp.off";
   const std::string prefix = out_prefix();
   const CliRun equals = run("solve " + lamp + " --levels=1 --formats=csv --out=" + prefix + " --quiet");
@@ -208,7 +202,7 @@ TEST(CliOptions, EqualsFormAndRepeatedOptions) {
 }
 
 // --help (and help COMMAND) print the command's usage on stdout with status 0; --version too.
-TEST(CliOptions, HelpAndVersion) {
+TEST_F(CliOptions, HelpAndVersion) {
   for (const char* cmd : {"check", "cube", "solve"}) {
     const CliRun help = panelrad::testing::run_cli(std::string(cmd) + " --help", "2>/dev/null");
     EXPECT_EQ(help.status, 0) << help.output;
@@ -227,7 +221,7 @@ TEST(CliOptions, HelpAndVersion) {
   EXPECT_EQ(version.output.rfind("panelrad ", 0), 0u) << version.output;
 }
 
-TEST(CliOptions, MaxElementsBelowTheCoarseMeshSaysWhatItDid) {
+TEST_F(CliOptions, MaxElementsBelowTheCoarseMeshSaysWhatItDid) {
   const CliRun r = run("solve " + kCornell + " --max-elements 5 --quiet --formats csv --out " + out_prefix());
   EXPECT_CONTAINS(r.output, "--max-elements 5 is below the scene's 36 triangles (n0): solving level 0, n = 36");
 }
