@@ -3,6 +3,7 @@
 #include <panelrad/operator/collocation.hpp>
 #include <panelrad/operator/dense_operator.hpp>
 #include <panelrad/operator/fast_operator.hpp>
+#include <panelrad/support/chunk_pool.hpp>
 #include <panelrad/support/resources.hpp>
 #include <panelrad/scene/scene.hpp>
 #include <panelrad/solve/solvers.hpp>
@@ -16,6 +17,7 @@
 
 #include <cstring>
 #include <random>
+#include <vector>
 
 namespace {
 
@@ -105,6 +107,49 @@ TEST_F(CubeLevel3, BitIdenticalForAnyThreadCount) {
   omp_set_num_threads(saved);
   EXPECT_EQ(0, std::memcmp(y1.data(), y2.data(), sizeof(double) * 768));
   EXPECT_EQ(0, std::memcmp(y1.data(), y3.data(), sizeof(double) * 768));
+}
+
+// The lists live in chunks that the process keeps between operators (support/chunk_pool.hpp):
+// an operator set up on kept chunks, filled with garbage first, has the same near and far lists
+// and the same product bits as one set up on fresh memory.
+TEST_F(CubeLevel3, SameListsAndProductOnKeptChunks) {
+  const Eigen::VectorXd v = random_vector(768, 9);
+  ChunkPool& pool = ChunkPool::process();
+  const std::size_t saved_limit = pool.limit();
+  const auto lists = [&](const FastOperator& op) {
+    std::vector<std::vector<geometry::Index>> out;
+    for (geometry::Index i = 0; i < 768; ++i) {
+      out.push_back(op.near_elements(i));
+      out.push_back(op.far_clusters(i));
+    }
+    return out;
+  };
+  pool.set_limit(0);  // nothing kept: the first operator's chunks are new memory, freed after it
+  Eigen::VectorXd y_fresh;
+  std::vector<std::vector<geometry::Index>> fresh;
+  {
+    const FastOperator op(*collocation, FastOptions{});
+    op.apply(v, y_fresh);
+    fresh = lists(op);
+  }
+  EXPECT_EQ(pool.kept_bytes(), 0u);
+  pool.set_limit(ChunkPool::kDefaultLimit);
+  { const FastOperator op(*collocation, FastOptions{}); }
+  const std::size_t kept = pool.kept_bytes();
+  EXPECT_GT(kept, 0u);
+  std::vector<ChunkPool::Chunk> taken;  // the kept chunks, overwritten with NaN bytes
+  while (pool.kept_bytes() > 0) taken.push_back(pool.acquire(1));
+  for (const ChunkPool::Chunk& c : taken) std::memset(c.data, 0xff, c.bytes);
+  for (const ChunkPool::Chunk& c : taken) pool.give_back(c);
+  {
+    const FastOperator op(*collocation, FastOptions{});
+    EXPECT_LT(pool.kept_bytes(), kept);  // it took kept chunks
+    Eigen::VectorXd y;
+    op.apply(v, y);
+    EXPECT_EQ(0, std::memcmp(y.data(), y_fresh.data(), sizeof(double) * 768));
+    EXPECT_TRUE(lists(op) == fresh);
+  }
+  pool.set_limit(saved_limit);
 }
 
 // The self-check on sampled rows measures the real product error: it agrees with the error

@@ -12,6 +12,7 @@
 #include <panelrad/geometry/scene_validation.hpp>
 #include <panelrad/geometry/validation.hpp>
 
+#include <panelrad/support/chunk_pool.hpp>
 #include <panelrad/support/error.hpp>
 #include <panelrad/support/resources.hpp>
 #include <panelrad/support/version.hpp>

@@ -8,6 +8,8 @@
 #include <panelrad/quadrature/exact_integrals.hpp>
 #include <panelrad/support/resources.hpp>
 
+#include <omp.h>
+
 #include <cstdint>
 #include <cstdio>
 #include <limits>
@@ -15,6 +17,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <exception>
 #include <mutex>
 #include <span>
 #include <sstream>
@@ -104,11 +107,6 @@ FarFieldCosts far_field_costs(int degree, std::size_t bytes_per_term) {
   return c;
 }
 
-std::size_t FastOperator::RowBlock::bytes() const {
-  return sizeof(RowBlock) + (near_start.size() + far_start.size()) * sizeof(std::uint32_t) +
-         (near_col.size() + far_cluster.size()) * sizeof(Index) + near_val.size() * sizeof(double);
-}
-
 FastOperator::FastOperator(const Collocation& collocation, const FastOptions& options)
     : tree_(collocation.shared_tree()), options_(options) {
   check_options();
@@ -181,9 +179,17 @@ void FastOperator::report_stage(const std::string& what) const {
 
 // Refuses what will not fit, before any large allocation.
 void FastOperator::refuse_beyond_memory(const Collocation& collocation, const TargetClusters* targets) const {
-  const MemoryEstimate est = estimate_memory(collocation, options_.eta, options_.degree, rows(), targets);
+  // What is available is read (files of /proc and the cgroup, serial) by one thread while the
+  // others sample the coverings.
+  std::size_t limit = options_.memory_limit;
+  const MemoryEstimate est = estimate_memory(collocation, options_.eta, options_.degree, rows(), targets, [&] {
+    if (!limit) limit = available_memory_bytes();
+  });
   const std::size_t peak = est.bytes + est.list_bytes;
-  const std::size_t limit = options_.memory_limit ? options_.memory_limit : available_memory_bytes();
+  if (peak > limit && !options_.memory_limit && ChunkPool::process().kept_bytes() > 0) {
+    ChunkPool::process().release();  // the lists' chunks kept from earlier setups, before refusing
+    limit = available_memory_bytes();
+  }
   if (peak > limit)
     throw ResourceError("fast operator for n = " + std::to_string(n_) + rows_note() + " needs about " +
                         format_bytes(static_cast<double>(peak)) + " during setup (" +
@@ -473,7 +479,8 @@ bool FastOperator::row_computed(Index i) const {
 
 // One traversal per row held, in blocks of kRowBlock rows (dynamically scheduled): each thread
 // gathers a block's coverings (42) (and the near-field integrals, (43) first sum) in lists of its
-// own, reused from block to block, then writes them once into the block's exact-size arrays. Every
+// own, reused from block to block, then writes them once into one piece of exactly their size in
+// its own chunks (list_chunks_, kept by the process between operators: chunk_pool.hpp). Every
 // block depends on its rows alone, so the lists are identical for any thread count.
 void FastOperator::cover_rows() {
   const geometry::ClusterTree& tree = *tree_;
@@ -482,6 +489,7 @@ void FastOperator::cover_rows() {
   const Index num_blocks = (row_end_ - row_begin_ + kRowBlock - 1) / kRowBlock;
   blocks_.clear();
   blocks_.resize(static_cast<std::size_t>(num_blocks));
+  list_chunks_.reset(omp_get_max_threads());
   std::size_t skipped = 0, skipped_rows = 0;
   std::size_t visible = 0, hidden = 0, partial = 0, clipped = 0;
   const geometry::Occluders* occluders = options_.occluders.get();
@@ -557,20 +565,24 @@ void FastOperator::cover_rows() {
       }
       RowBlock& blk = blocks_[static_cast<std::size_t>(b)];
       const std::size_t rows = near_count.size();
-      blk.near_start.resize(rows + 1);
-      blk.far_start.resize(rows + 1);
+      blk.lists = list_chunks_.allocate(omp_get_thread_num(), RowBlock::list_bytes(rows, near_col.size(), far_cluster.size()));
+      blk.rows = static_cast<std::uint32_t>(rows);
+      blk.near = static_cast<std::uint32_t>(near_col.size());
+      blk.far = static_cast<std::uint32_t>(far_cluster.size());
+      std::uint32_t* near_start = blk.near_start();
+      std::uint32_t* far_start = blk.far_start();
       std::uint32_t near = 0, far = 0;
       for (std::size_t r = 0; r < rows; ++r) {
-        blk.near_start[r] = near;
-        blk.far_start[r] = far;
+        near_start[r] = near;
+        far_start[r] = far;
         near += static_cast<std::uint32_t>(near_count[r]);
         far += static_cast<std::uint32_t>(far_count[r]);
       }
-      blk.near_start[rows] = near;
-      blk.far_start[rows] = far;
-      blk.near_col.assign(near_col.begin(), near_col.end());
-      blk.near_val.assign(near_val.begin(), near_val.end());
-      blk.far_cluster.assign(far_cluster.begin(), far_cluster.end());
+      near_start[rows] = near;
+      far_start[rows] = far;
+      std::copy(near_col.begin(), near_col.end(), blk.near_col());
+      std::copy(near_val.begin(), near_val.end(), blk.near_val());
+      std::copy(far_cluster.begin(), far_cluster.end(), blk.far_cluster());
     } catch (const std::bad_alloc&) {
 #pragma omp atomic write
       out_of_memory = true;
@@ -578,6 +590,7 @@ void FastOperator::cover_rows() {
   }
   if (out_of_memory || too_long) {
     blocks_.clear();
+    list_chunks_.clear();
     if (too_long)
       throw ResourceError("fast operator for n = " + std::to_string(n_) + rows_note() + ": a block of " +
                           std::to_string(kRowBlock) + " rows has more than 2^32 near or far pairs; use a larger eta");
@@ -601,8 +614,8 @@ void FastOperator::store_coverings() {
   std::int64_t near = 0, far = 0;
   for (RowBlock& blk : blocks_) {
     blk.far_first = far;
-    near += static_cast<std::int64_t>(blk.near_col.size());
-    far += static_cast<std::int64_t>(blk.far_cluster.size());
+    near += blk.near;
+    far += blk.far;
   }
   stats_.near_pairs = static_cast<std::size_t>(near);
   stats_.far_pairs = static_cast<std::size_t>(far);
@@ -617,9 +630,11 @@ void FastOperator::store_coverings() {
 FastOperator::RowLists FastOperator::row_lists(std::size_t r) const {
   const RowBlock& blk = blocks_[r / static_cast<std::size_t>(kRowBlock)];
   const std::size_t k = r % static_cast<std::size_t>(kRowBlock);
-  const std::uint32_t near = blk.near_start[k], far = blk.far_start[k];
-  return {blk.near_col.data() + near,  blk.near_val.data() + near, blk.near_start[k + 1] - near,
-          blk.far_cluster.data() + far, blk.far_start[k + 1] - far, blk.far_first + far};
+  const std::uint32_t* near_start = blk.near_start();
+  const std::uint32_t* far_start = blk.far_start();
+  const std::uint32_t near = near_start[k], far = far_start[k];
+  return {blk.near_col() + near,  blk.near_val() + near, near_start[k + 1] - near,
+          blk.far_cluster() + far, far_start[k + 1] - far, blk.far_first + far};
 }
 
 // The rho-scaled Taylor coefficients (44)-(45) of every far pair, when they are to be stored
@@ -686,7 +701,8 @@ FastOperator::MemoryEstimate FastOperator::estimate_memory(const Collocation& co
 }
 
 FastOperator::MemoryEstimate FastOperator::estimate_memory(const Collocation& collocation, double eta, int degree,
-                                                           const RowRange& row_range, const TargetClusters* targets) {
+                                                           const RowRange& row_range, const TargetClusters* targets,
+                                                           const std::function<void()>& alongside) {
   const geometry::ClusterTree& tree = collocation.tree();
   const Index n = tree.num_elements();
   const auto [begin, end] = resolve_rows(row_range, n);
@@ -697,23 +713,36 @@ FastOperator::MemoryEstimate FastOperator::estimate_memory(const Collocation& co
   for (int l = 0; l <= L; ++l) clusters += static_cast<std::size_t>(tree.level_size(l));
   const Index samples = std::min<Index>(m, 256);
   std::size_t near = 0, far = 0, sampled = 0, rows = 0;  // integer sums: the same for any thread count
-#pragma omp parallel for schedule(dynamic, kLightChunk) reduction(+ : rows)
-  for (Index i = begin; i < end; ++i) rows += collocation.reflectivity()[i] != 0;
-#pragma omp parallel for schedule(dynamic, 1) reduction(+ : near, far, sampled)
-  for (Index s = 0; s < samples; ++s) {
-    const Index i = begin + static_cast<Index>((static_cast<std::int64_t>(s) * m + m / 2) / samples);
-    if (collocation.reflectivity()[i] == 0) continue;
-    ++sampled;
-    const ClusterRef* starts = nullptr;  // the per-point covering from the roots, or below P's targets
-    std::int64_t count = 0;
-    if (targets) {
-      const std::size_t a = static_cast<std::size_t>(i >> (2 * (L - targets->finest_level)));
-      starts = targets->start.data() + targets->start_start[a];
-      count = targets->start_start[a + 1] - targets->start_start[a];
+  std::exception_ptr alongside_failed;
+#pragma omp parallel reduction(+ : rows, near, far, sampled)
+  {
+    if (alongside) {
+#pragma omp single nowait
+      try {
+        alongside();
+      } catch (...) {
+        alongside_failed = std::current_exception();
+      }
     }
-    cover(tree, collocation.collocation_point(i), tree.plane(L, i), eta, starts, count, [&](int, Index) { ++far; },
-          [&](Index) { ++near; }, [] {});
+#pragma omp for schedule(dynamic, kLightChunk) nowait
+    for (Index i = begin; i < end; ++i) rows += collocation.reflectivity()[i] != 0;
+#pragma omp for schedule(dynamic, 1) nowait
+    for (Index s = 0; s < samples; ++s) {
+      const Index i = begin + static_cast<Index>((static_cast<std::int64_t>(s) * m + m / 2) / samples);
+      if (collocation.reflectivity()[i] == 0) continue;
+      ++sampled;
+      const ClusterRef* starts = nullptr;  // the per-point covering from the roots, or below P's targets
+      std::int64_t count = 0;
+      if (targets) {
+        const std::size_t a = static_cast<std::size_t>(i >> (2 * (L - targets->finest_level)));
+        starts = targets->start.data() + targets->start_start[a];
+        count = targets->start_start[a + 1] - targets->start_start[a];
+      }
+      cover(tree, collocation.collocation_point(i), tree.plane(L, i), eta, starts, count, [&](int, Index) { ++far; },
+            [&](Index) { ++near; }, [] {});
+    }
   }
+  if (alongside_failed) std::rethrow_exception(alongside_failed);
   MemoryEstimate e;
   const double per_row = sampled ? 1.0 / static_cast<double>(sampled) : 0.0;
   const std::size_t near_pairs = static_cast<std::size_t>(static_cast<double>(near) * per_row * static_cast<double>(rows));

@@ -16,6 +16,7 @@
 #include <panelrad/operator/clustering_parameters.hpp>
 #include <panelrad/operator/collocation.hpp>
 #include <panelrad/operator/far_field.hpp>
+#include <panelrad/support/chunk_pool.hpp>
 #include <panelrad/support/large_buffer.hpp>
 #include <panelrad/operator/linear_operator.hpp>
 #include <panelrad/operator/near_field.hpp>
@@ -277,13 +278,22 @@ class FastOperator final : public RadiosityOperator {
   // the starts (within the block) of its near-field element ids with their integrals rho_i/pi Int G
   // (43) and of its far-field cluster ids, and the index among all far pairs of the block's first
   // one (where its stored coefficients start). Each block is built whole by one thread and kept:
-  // the lists are never concatenated, so they are written once and held once.
+  // the lists are never concatenated, so they are written once and held once, in one piece of
+  // that thread's chunks (list_chunks_): near_val, near_col, far_cluster, near_start, far_start.
   struct RowBlock {
     std::int64_t far_first = 0;
-    geometry::UninitializedVector<std::uint32_t> near_start, far_start;  // the block's rows + 1 each
-    geometry::UninitializedVector<geometry::Index> near_col, far_cluster;
-    geometry::UninitializedVector<double> near_val;
-    std::size_t bytes() const;
+    std::uint32_t rows = 0, near = 0, far = 0;
+    std::byte* lists = nullptr;
+    static std::size_t list_bytes(std::size_t rows, std::size_t near, std::size_t far) {
+      return near * (sizeof(double) + sizeof(geometry::Index)) + far * sizeof(geometry::Index) +
+             2 * (rows + 1) * sizeof(std::uint32_t);
+    }
+    double* near_val() const { return reinterpret_cast<double*>(lists); }
+    geometry::Index* near_col() const { return reinterpret_cast<geometry::Index*>(near_val() + near); }
+    geometry::Index* far_cluster() const { return near_col() + near; }
+    std::uint32_t* near_start() const { return reinterpret_cast<std::uint32_t*>(far_cluster() + far); }
+    std::uint32_t* far_start() const { return near_start() + rows + 1; }
+    std::size_t bytes() const { return sizeof(RowBlock) + list_bytes(rows, near, far); }
   };
   // Row r's lists (r counted from the first row held).
   struct RowLists {
@@ -305,8 +315,9 @@ class FastOperator final : public RadiosityOperator {
   static TargetPlan target_plan(const FastOptions& options, int finest_level);
   static std::vector<geometry::Index> level_offsets(const geometry::ClusterTree& tree);
   static std::shared_ptr<TargetClusters> make_target_clusters(const geometry::ClusterTree& tree, const FastOptions& options);
+  /// `alongside`, when given, is run by one thread of the sampling's team while the others sample.
   static MemoryEstimate estimate_memory(const Collocation& collocation, double eta, int degree, const RowRange& rows,
-                                        const TargetClusters* targets);
+                                        const TargetClusters* targets, const std::function<void()>& alongside = {});
 
   // Setup stages, in order.
   void check_options();
@@ -387,6 +398,7 @@ class FastOperator final : public RadiosityOperator {
   // 5.6 a row at n = 49152): a 64-bit StorageIndex takes 16 bytes a pair against 12, at no gain in
   // speed. The near sum is fused with the far sum of the same row; it is < 1% of a product.
   std::vector<RowBlock> blocks_;
+  ChunkArena list_chunks_;                       // the blocks' lists, a slot per thread (chunk_pool.hpp)
   LargeBuffer far_coef_;                         // uninitialized, huge pages, filled in parallel
   LargeArray<float> far_coef_single_;            // the same, single_precision_coefficients
   std::vector<char> probed_;                     // probe_samples > 0: per row held, covered or not

@@ -1,0 +1,84 @@
+#pragma once
+// Memory in chunks for arrays that a setup builds and a later setup builds again: the fast
+// operator's near and far field lists (42)-(43). A chunk is 2 MiB or a multiple, 2 MiB aligned,
+// with huge pages advised (large_buffer.hpp). When its owner is destroyed the chunk goes back to
+// the process's pool, which keeps it, up to a limit, instead of returning it to the system: the
+// next setup then writes to memory already backed, where new memory costs a page fault per 4 KiB
+// (in a virtual machine, the host backing the page as well) and the allocator may give freed
+// memory back between two setups. The memory gate of a setup (FastOperator) releases the kept
+// chunks before it refuses a size.
+#include <cstddef>
+#include <mutex>
+#include <vector>
+
+namespace panelrad {
+
+class ChunkPool {
+ public:
+  struct Chunk {
+    std::byte* data = nullptr;
+    std::size_t bytes = 0;
+  };
+  static constexpr std::size_t kChunkBytes = std::size_t{2} << 20;     ///< the unit: one huge page
+  static constexpr std::size_t kDefaultLimit = std::size_t{256} << 20;  ///< kept at most, by default
+
+  /// The process's pool (never destroyed, so that owners may give chunks back at exit).
+  static ChunkPool& process();
+
+  /// A kept chunk of at least `bytes` (the smallest such), else a new one of `bytes` rounded up
+  /// to kChunkBytes; its contents are unspecified. When the new one cannot be had, the kept
+  /// chunks are freed and it is tried once more; then std::bad_alloc.
+  Chunk acquire(std::size_t bytes);
+  /// Keeps `chunk` while the kept bytes stay within the limit, else frees it.
+  void give_back(Chunk chunk) noexcept;
+  /// Frees every kept chunk.
+  void release() noexcept;
+  std::size_t kept_bytes() const;
+  std::size_t limit() const;
+  /// Sets the most that is kept (0: nothing), freeing what is above it.
+  void set_limit(std::size_t bytes);
+
+  ChunkPool() = default;
+  ChunkPool(const ChunkPool&) = delete;
+  ChunkPool& operator=(const ChunkPool&) = delete;
+  ~ChunkPool();
+
+ private:
+  void trim_to(std::size_t bytes) noexcept;  // with mutex_ held
+
+  mutable std::mutex mutex_;
+  std::vector<Chunk> kept_;
+  std::size_t kept_bytes_ = 0;
+  std::size_t limit_ = kDefaultLimit;
+};
+
+/// The chunks of one owner, taken from a pool and carved into arrays by up to `slots` threads at
+/// once, each slot from chunks of its own; all given back when the owner clears or destroys it.
+class ChunkArena {
+ public:
+  ChunkArena() = default;
+  explicit ChunkArena(int slots, ChunkPool& pool = ChunkPool::process());
+  ChunkArena(const ChunkArena&) = delete;
+  ChunkArena& operator=(const ChunkArena&) = delete;
+  ~ChunkArena() { clear(); }
+
+  /// `bytes` uninitialized bytes, 64-byte aligned, from slot `slot`'s chunks (a new chunk when
+  /// the current one has no room); std::bad_alloc when no chunk can be had. One thread per slot.
+  std::byte* allocate(int slot, std::size_t bytes);
+  /// Gives every chunk back to the pool.
+  void clear() noexcept;
+  /// Gives every chunk back, then takes `slots` slots from `pool`.
+  void reset(int slots, ChunkPool& pool = ChunkPool::process());
+  /// The bytes of the chunks held.
+  std::size_t chunk_bytes() const;
+
+ private:
+  struct alignas(64) Slot {  // a cache line of its own: each thread moves its own `used`
+    std::vector<ChunkPool::Chunk> chunks;
+    std::size_t used = 0;  // of the last chunk
+  };
+  ChunkPool* pool_ = nullptr;
+  std::vector<Slot> slots_;
+};
+
+}  // namespace panelrad
