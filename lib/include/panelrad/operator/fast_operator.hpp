@@ -398,7 +398,9 @@ class FastOperator final : public RadiosityOperator {
   // 5.6 a row at n = 49152): a 64-bit StorageIndex takes 16 bytes a pair against 12, at no gain in
   // speed. The near sum is fused with the far sum of the same row; it is < 1% of a product.
   std::vector<RowBlock> blocks_;
-  ChunkArena list_chunks_;                       // the blocks' lists, a slot per thread (chunk_pool.hpp)
+  // The blocks' lists, a slot per thread (chunk_pool.hpp). held_bytes counts the lists; each
+  // slot's last chunk may hold up to 2 MiB more, unused.
+  ChunkArena list_chunks_;
   LargeBuffer far_coef_;                         // uninitialized, huge pages, filled in parallel
   LargeArray<float> far_coef_single_;            // the same, single_precision_coefficients
   std::vector<char> probed_;                     // probe_samples > 0: per row held, covered or not
