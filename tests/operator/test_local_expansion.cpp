@@ -230,6 +230,37 @@ TEST_F(CubeLevel4, DeterministicAcrossThreadsBlocksRowsAndProbes) {
   EXPECT_GT(b.relative_error, 0);
 }
 
+// Target clusters down to level 3 (min_points 4): with one thread the levels from 1 on are taken
+// in subtree tasks, with two to four threads those from 2 on (at least 32 subtrees a thread), so
+// a task spans two or three levels. The same sources (counts) and the same product, bit for bit,
+// for 1..4 threads.
+TEST_F(CubeLevel4, DeepTargetLevelsSameForAnyThreadCount) {
+  const Index n = collocation->size();
+  const Eigen::VectorXd v = random_vector(n, 12);
+  FastOptions o = options(4);
+  o.local.min_points = 4;
+  const int saved = omp_get_max_threads();
+  std::vector<Eigen::VectorXd> y(4);
+  std::vector<FastStatistics> stats(4);
+  for (int threads = 1; threads <= 4; ++threads) {
+    omp_set_num_threads(threads);
+    const FastOperator fast(*collocation, o);
+    fast.apply(v, y[static_cast<std::size_t>(threads - 1)]);
+    stats[static_cast<std::size_t>(threads - 1)] = fast.statistics();
+  }
+  omp_set_num_threads(saved);
+  EXPECT_EQ(stats[0].target_level, 3);
+  EXPECT_GT(stats[0].target_pairs, 0u);
+  for (std::size_t t = 1; t < y.size(); ++t) {
+    EXPECT_EQ(stats[t].target_pairs, stats[0].target_pairs) << t + 1 << " threads";
+    EXPECT_EQ(stats[t].target_clusters, stats[0].target_clusters) << t + 1 << " threads";
+    EXPECT_EQ(stats[t].far_pairs, stats[0].far_pairs) << t + 1 << " threads";
+    EXPECT_EQ(0, std::memcmp(y[0].data(), y[t].data(), sizeof(double) * static_cast<std::size_t>(n))) << t + 1 << " threads";
+  }
+  // Against the dense product, as accurate as with the targets of levels 0..2.
+  EXPECT_LT(error(FastOperator(*collocation, o), v), 1.25 * error(FastOperator(*collocation, options(4)), v));
+}
+
 // With V (occluders given) the coverings stay per point; below min_points nothing changes either:
 // the same coverings and product, bit for bit, as with target clusters off.
 TEST_F(CubeLevel4, PerPointWhenOccludedOrTooSmall) {

@@ -13,6 +13,7 @@
 #include <panelrad/geometry/validation.hpp>
 
 #include <panelrad/support/chunk_pool.hpp>
+#include <panelrad/support/kept_vector.hpp>
 #include <panelrad/support/error.hpp>
 #include <panelrad/support/resources.hpp>
 #include <panelrad/support/version.hpp>

@@ -234,9 +234,9 @@ void FastOperator::setup_cluster_frames() {
         leaf_shift_[static_cast<std::size_t>(3 * (parities * r + parity) + k)] = parity ? -d[k] : d[k];
   }
 #pragma omp parallel reduction(&& : finite)
-  for (int l = 0; l < L; ++l) {  // level by level (a child's offset reads its parent's origin), one team
+  for (int l = 0; l < L; ++l) {  // no level waits for another: a child's offset forms its parent's origin anew
     const Index m = tree.level_size(l);
-#pragma omp for schedule(dynamic, kLightChunk)
+#pragma omp for schedule(dynamic, kLightChunk) nowait
     for (Index k = 0; k < m; ++k) {
       const Vec3 A = unit_scale_ * tree.cluster(l, k).centre;
       const Index id = cluster_id(l, k);
@@ -248,9 +248,13 @@ void FastOperator::setup_cluster_frames() {
   if (!finite) throw std::invalid_argument("fast operator: a cluster centre A(tau) is not finite in the far field's unit");
 }
 
-// A(tau) of cluster k of level l >= 1 (scaled: A) in its parent's frame.
+// A(tau) of cluster k of level l >= 1 (scaled: A) in its parent's frame, the parent's origin
+// formed from the tree as setup_cluster_frames stores it (the same doubles as frame(parent)).
 std::array<double, 2> FastOperator::offset_in_parent(int l, Index k, const Vec3& A) const {
-  return frame(cluster_id(l - 1, k / 4)).local(A);
+  const Index parent = k / 4;
+  PlaneFrame f = root_axes_[static_cast<std::size_t>(parent >> (2 * (l - 1)))];
+  f.origin = unit_scale_ * tree_->cluster(l - 1, parent).centre;
+  return f.local(A);
 }
 
 PlaneFrame FastOperator::frame(Index id) const {
@@ -412,11 +416,13 @@ std::shared_ptr<TargetClusters> FastOperator::make_target_clusters(const geometr
   if (plan.level < 0) return nullptr;
   const std::vector<Index> offset = level_offsets(tree);
   const double unit = far_field_unit(tree);
-  // Written by the parallel loops below, not zeroed first by one thread.
-  geometry::UninitializedVector<PlaneFrame> frames(static_cast<std::size_t>(offset[static_cast<std::size_t>(plan.level) + 1]));
+  // Written by the parallel loop below, not zeroed first by one thread; the levels are
+  // independent, so no thread waits at the end of one.
+  KeptVector<PlaneFrame> frames(static_cast<std::size_t>(offset[static_cast<std::size_t>(plan.level) + 1]));
+#pragma omp parallel
   for (int l = 0; l <= plan.level; ++l) {
     const Index m = tree.level_size(l);
-#pragma omp parallel for schedule(dynamic, 256)
+#pragma omp for schedule(dynamic, 256) nowait
     for (Index k = 0; k < m; ++k) {
       const Cluster& c = tree.cluster(l, k);
       frames[static_cast<std::size_t>(offset[static_cast<std::size_t>(l)] + k)] = make_plane_frame(unit * c.centre, c.normal);

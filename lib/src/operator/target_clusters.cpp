@@ -1,5 +1,5 @@
-// The target clusters of the cluster-cluster far field and their sources, level by level from
-// the roots (target_clusters.hpp).
+// The target clusters of the cluster-cluster far field and their sources, from the roots down,
+// each after its parent (target_clusters.hpp).
 #include "target_clusters.hpp"
 
 #include <panelrad/geometry/admissibility.hpp>
@@ -24,26 +24,34 @@ using Item = ClusterRef;
 double round_up(double x) { return x * (1.0 + 0x1p-50); }
 
 // What the traversal of one target cluster found: its sources and the clusters handed to its
-// children (from level lt: to the per-point coverings), as ranges of its thread's lists.
+// children (from level lt: to the per-point coverings), as ranges of its thread's lists. Trivial:
+// a level's records are allocated unwritten, each then written once by its traversal.
 struct Found {
-  std::int64_t source_at = 0, pass_at = 0;
-  std::int32_t sources = 0, passes = 0, thread = 0, coplanar = 0;
+  std::int64_t source_at, pass_at;
+  std::int32_t sources, passes, thread, coplanar;
 };
+
+// The subtrees of the fused levels: at least this many a thread, for the dynamic schedule to
+// even out processors of unequal speed.
+constexpr Index kSubtreesPerThread = 32;
+// Levels above the fused ones with fewer targets than this are traversed by one thread: each
+// target takes microseconds, starting a team tens (two virtual processors).
+constexpr Index kParallelLevel = 256;
 
 // One thread's list, on a cache line of its own: the list's end changes with every cluster found.
 template <class T>
 struct alignas(64) ThreadList {
-  std::vector<T> items;
+  KeptVector<T> items;
 };
 
 // The CSR of the ranges found on levels [0, found.size()) (Found) from the threads' lists, ids
 // numbered level by level: the counts by a serial prefix sum into starts[1 ..], one resize of
 // `out`, then the lists copied in target order, in parallel.
 template <class T, class Count, class At, class ListOf>
-void join_levels(std::span<const std::vector<Found>> found, std::vector<std::int64_t>& starts,
-                 geometry::UninitializedVector<T>& out, Count count, At at, ListOf list_of) {
+void join_levels(std::span<const KeptVector<Found>> found, std::vector<std::int64_t>& starts, KeptVector<T>& out,
+                 Count count, At at, ListOf list_of) {
   std::size_t id = 0;
-  for (const std::vector<Found>& level : found)
+  for (const KeptVector<Found>& level : found)
     for (const Found& f : level) {
       starts[id + 1] = starts[id] + count(f);
       ++id;
@@ -53,7 +61,7 @@ void join_levels(std::span<const std::vector<Found>> found, std::vector<std::int
   {
     std::size_t first = 0;
     for (std::size_t l = 0; l < found.size(); ++l) {
-      const std::vector<Found>& level = found[l];
+      const KeptVector<Found>& level = found[l];
       const Index m = static_cast<Index>(level.size());
 #pragma omp for schedule(dynamic, 256) nowait
       for (Index k = 0; k < m; ++k) {
@@ -89,98 +97,131 @@ TargetClusters build_target_clusters(const geometry::ClusterTree& tree, const Pl
   const auto id_of = [&](int l, Index k) { return level_offset[static_cast<std::size_t>(l)] + k; };
   const double inv_scale = 1.0 / unit_scale;  // a power of two: exact
 
-  // Level by level: each target's traversal starts from what its parent handed down, and writes
-  // to its thread's lists (no allocation per target). The sources of all levels join the CSR at
-  // the end, in one allocation.
-  const std::size_t threads = static_cast<std::size_t>(std::max(1, omp_get_max_threads()));
-  std::vector<std::vector<Found>> found(static_cast<std::size_t>(lt) + 1);
+  // Each target's traversal starts from what its parent handed down and writes to its thread's
+  // lists of its level (no allocation per target). The top levels go level by level; from level
+  // l0 on, where there are enough clusters to share, one task takes the whole subtree of a
+  // cluster of level l0, parents before children, so that a parent's hand-down is read by the
+  // thread that wrote it and no level waits for the slowest processor. The sources of all levels
+  // join the CSR at the end, in one allocation.
+  const int threads = std::max(1, omp_get_max_threads());
+  std::vector<KeptVector<Found>> found(static_cast<std::size_t>(lt) + 1);
   std::vector<std::vector<ThreadList<Index>>> sources(static_cast<std::size_t>(lt) + 1);  // [level][thread]
-  std::vector<ThreadList<Item>> previous_pass(threads), current_pass(threads);             // [thread]
+  std::vector<std::vector<ThreadList<Item>>> passes(static_cast<std::size_t>(lt) + 1);    // [level][thread]
   for (int l = 0; l <= lt; ++l) {
+    found[static_cast<std::size_t>(l)].resize(static_cast<std::size_t>(tree.level_size(l)));  // each written below
+    sources[static_cast<std::size_t>(l)].resize(static_cast<std::size_t>(threads));
+    passes[static_cast<std::size_t>(l)].resize(static_cast<std::size_t>(threads));
+  }
+  int l0 = 0;
+  while (l0 <= lt && tree.level_size(l0) < kSubtreesPerThread * threads) ++l0;
+
+  // Target k of level l, by thread `thread`, with `stack` its scratch.
+  const auto traverse = [&](int l, Index k, int thread, std::vector<Item>& stack) {
+    const Cluster& sigma = tree.cluster(l, k);
+    const Index id = id_of(l, k);
+    const PlaneFrame& frame = frames[static_cast<std::size_t>(id)];
+    const LocalBox box = LocalBox::bounding(frame, unit_scale * sigma.vertex[0], unit_scale * sigma.vertex[1],
+                                            unit_scale * sigma.vertex[2]);
+    out.box[static_cast<std::size_t>(id)] = box;
+    const Vec3 c = inv_scale * box.centre(frame);
+    const double Rb = inv_scale * box.half_diagonal();
+    const Index plane = tree.plane(l, k);
+    KeptVector<Index>& my_sources = sources[static_cast<std::size_t>(l)][static_cast<std::size_t>(thread)].items;
+    KeptVector<Item>& my_pass = passes[static_cast<std::size_t>(l)][static_cast<std::size_t>(thread)].items;
+    Found f{};
+    f.thread = thread;
+    f.source_at = static_cast<std::int64_t>(my_sources.size());
+    f.pass_at = static_cast<std::int64_t>(my_pass.size());
+    stack.clear();
+    const auto visit = [&](const Item& first) {
+      stack.push_back(first);
+      while (!stack.empty()) {
+        const Item it = stack.back();
+        stack.pop_back();
+        const Cluster& tau = tree.cluster(it.level, it.k);
+        if (tree.plane(it.level, it.k) == plane) {
+          ++f.coplanar;
+        } else if (geometry::is_admissible(c, tau.centre, round_up(tau.radius + round_up(eta * Rb)), eta) &&
+                   geometry::is_admissible(c, tau.centre, round_up(Rb + round_up(eta_t * tau.radius)), eta_t)) {
+          my_sources.push_back(id_of(it.level, it.k));
+        } else if (it.level < L && tau.radius >= Rb) {
+          for (Index child = 3; child >= 0; --child) stack.push_back({it.level + 1, 4 * it.k + child});
+        } else {
+          my_pass.push_back(it);
+        }
+      }
+    };
+    if (l == 0) {
+      for (Index root = 0; root < tree.num_roots(); ++root) visit({0, root});
+    } else {
+      const Found& parent = found[static_cast<std::size_t>(l) - 1][static_cast<std::size_t>(k / 4)];
+      const KeptVector<Item>& handed = passes[static_cast<std::size_t>(l) - 1][static_cast<std::size_t>(parent.thread)].items;
+      for (std::int32_t j = 0; j < parent.passes; ++j) visit(handed[static_cast<std::size_t>(parent.pass_at + j)]);
+    }
+    f.sources = static_cast<std::int32_t>(static_cast<std::int64_t>(my_sources.size()) - f.source_at);
+    f.passes = static_cast<std::int32_t>(static_cast<std::int64_t>(my_pass.size()) - f.pass_at);
+    found[static_cast<std::size_t>(l)][static_cast<std::size_t>(k)] = f;
+  };
+
+  bool failed = false;
+  std::string failure;
+  const auto fail = [&](int l, const std::exception& e) {
+#pragma omp critical(panelrad_target_clusters)
+    if (!failed) {
+      failed = true;
+      failure = "target clusters of level " + std::to_string(l) + ": " + e.what();
+    }
+  };
+  for (int l = 0; l < l0; ++l) {  // the top levels: few clusters each, too few to wake a team for
     const Index m = tree.level_size(l);
-    std::vector<Found>& current = found[static_cast<std::size_t>(l)];
-    current.assign(static_cast<std::size_t>(m), Found{});
-    std::vector<ThreadList<Index>>& level_sources = sources[static_cast<std::size_t>(l)];
-    level_sources.resize(threads);
-    for (ThreadList<Item>& pass : current_pass) pass.items.clear();
-    bool failed = false;
-    std::string failure;
-    // Targets in chunks: below the top levels a traversal takes under a microsecond (level 5 of
-    // the cube at n = 786,432), as long as a shared counter.
-    const int chunk = static_cast<int>(std::clamp<Index>(m / 256, 1, 16));
+#pragma omp parallel if (m >= kParallelLevel)
+    {
+      std::vector<Item> stack;
+#pragma omp for schedule(dynamic, 1)
+      for (Index k = 0; k < m; ++k) try {
+        traverse(l, k, omp_get_thread_num(), stack);
+      } catch (const std::exception& e) {
+        fail(l, e);
+      }
+    }
+    if (failed) throw std::runtime_error(failure);
+  }
+  if (l0 <= lt) {
+    const Index subtrees = tree.level_size(l0);
 #pragma omp parallel
     {
       const int thread = omp_get_thread_num();
-      std::vector<Index>& my_sources = level_sources[static_cast<std::size_t>(thread)].items;
-      std::vector<Item>& my_pass = current_pass[static_cast<std::size_t>(thread)].items;
       std::vector<Item> stack;
-#pragma omp for schedule(dynamic, chunk)
-      for (Index k = 0; k < m; ++k) try {
-        const Cluster& sigma = tree.cluster(l, k);
-        const Index id = id_of(l, k);
-        const PlaneFrame& frame = frames[static_cast<std::size_t>(id)];
-        const LocalBox box = LocalBox::bounding(frame, unit_scale * sigma.vertex[0], unit_scale * sigma.vertex[1],
-                                                unit_scale * sigma.vertex[2]);
-        out.box[static_cast<std::size_t>(id)] = box;
-        const Vec3 c = inv_scale * box.centre(frame);
-        const double Rb = inv_scale * box.half_diagonal();
-        const Index plane = tree.plane(l, k);
-        Found f;
-        f.thread = thread;
-        f.source_at = static_cast<std::int64_t>(my_sources.size());
-        f.pass_at = static_cast<std::int64_t>(my_pass.size());
-        stack.clear();
-        const auto visit = [&](const Item& first) {
-          stack.push_back(first);
-          while (!stack.empty()) {
-            const Item it = stack.back();
-            stack.pop_back();
-            const Cluster& tau = tree.cluster(it.level, it.k);
-            if (tree.plane(it.level, it.k) == plane) {
-              ++f.coplanar;
-            } else if (geometry::is_admissible(c, tau.centre, round_up(tau.radius + round_up(eta * Rb)), eta) &&
-                       geometry::is_admissible(c, tau.centre, round_up(Rb + round_up(eta_t * tau.radius)), eta_t)) {
-              my_sources.push_back(id_of(it.level, it.k));
-            } else if (it.level < L && tau.radius >= Rb) {
-              for (Index child = 3; child >= 0; --child) stack.push_back({it.level + 1, 4 * it.k + child});
-            } else {
-              my_pass.push_back(it);
-            }
+#pragma omp for schedule(dynamic, 1)
+      for (Index r = 0; r < subtrees; ++r) {
+        int l = l0;
+        try {
+          for (; l <= lt; ++l) {
+            const Index first = r << (2 * (l - l0)), end = (r + 1) << (2 * (l - l0));
+            for (Index k = first; k < end; ++k) traverse(l, k, thread, stack);
           }
-        };
-        if (l == 0) {
-          for (Index root = 0; root < tree.num_roots(); ++root) visit({0, root});
-        } else {
-          const Found& parent = found[static_cast<std::size_t>(l) - 1][static_cast<std::size_t>(k / 4)];
-          const std::vector<Item>& handed = previous_pass[static_cast<std::size_t>(parent.thread)].items;
-          for (std::int32_t j = 0; j < parent.passes; ++j) visit(handed[static_cast<std::size_t>(parent.pass_at + j)]);
-        }
-        f.sources = static_cast<std::int32_t>(static_cast<std::int64_t>(my_sources.size()) - f.source_at);
-        f.passes = static_cast<std::int32_t>(static_cast<std::int64_t>(my_pass.size()) - f.pass_at);
-        current[static_cast<std::size_t>(k)] = f;
-      } catch (const std::exception& e) {
-#pragma omp critical(panelrad_target_clusters)
-        if (!failed) {
-          failed = true;
-          failure = e.what();
+        } catch (const std::exception& e) {
+          fail(l, e);
         }
       }
     }
-    if (failed) throw std::runtime_error("target clusters of level " + std::to_string(l) + ": " + failure);
-    if (l == 0) {
-      out.coplanar_roots.resize(static_cast<std::size_t>(m));
-      for (Index k = 0; k < m; ++k) out.coplanar_roots[static_cast<std::size_t>(k)] = current[static_cast<std::size_t>(k)].coplanar;
-    }
-    previous_pass.swap(current_pass);
+    if (failed) throw std::runtime_error(failure);
   }
+  out.coplanar_roots.resize(static_cast<std::size_t>(tree.num_roots()));
+  for (Index k = 0; k < tree.num_roots(); ++k)
+    out.coplanar_roots[static_cast<std::size_t>(k)] = found[0][static_cast<std::size_t>(k)].coplanar;
   join_levels(found, out.source_start, out.source, [](const Found& f) { return std::int64_t{f.sources}; },
               [](const Found& f) { return f.source_at; },
-              [&](std::size_t l, const Found& f) -> const std::vector<Index>& { return sources[l][static_cast<std::size_t>(f.thread)].items; });
+              [&](std::size_t l, const Found& f) -> const KeptVector<Index>& {
+                return sources[l][static_cast<std::size_t>(f.thread)].items;
+              });
   // The starts of the per-point coverings: what the targets of level lt hand down.
   out.start_start.assign(static_cast<std::size_t>(tree.level_size(lt)) + 1, 0);
   join_levels(std::span(found).last(1), out.start_start, out.start, [](const Found& f) { return std::int64_t{f.passes}; },
               [](const Found& f) { return f.pass_at; },
-              [&](std::size_t, const Found& f) -> const std::vector<Item>& { return previous_pass[static_cast<std::size_t>(f.thread)].items; });
+              [&](std::size_t, const Found& f) -> const KeptVector<Item>& {
+                return passes[static_cast<std::size_t>(lt)][static_cast<std::size_t>(f.thread)].items;
+              });
   return out;
 }
 

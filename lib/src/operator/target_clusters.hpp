@@ -20,6 +20,7 @@
 #include <panelrad/geometry/cluster_tree.hpp>
 #include <panelrad/geometry/uninitialized_vector.hpp>
 #include <panelrad/operator/local_expansion.hpp>
+#include <panelrad/support/kept_vector.hpp>
 
 #include <cstdint>
 #include <vector>
@@ -38,12 +39,12 @@ struct TargetClusters {
   int degree = 0;         ///< d of the local expansions
   /// Per target cluster, by cluster id (ids of levels 0..lt): the rectangle in the cluster's
   /// frame, and the CSR of its sources (cluster ids).
-  std::vector<LocalBox> box;
+  KeptVector<LocalBox> box;
   std::vector<std::int64_t> source_start;
-  geometry::UninitializedVector<geometry::Index> source;
+  KeptVector<geometry::Index> source;
   /// Per cluster k of level lt: the CSR of the clusters where its points' coverings start.
   std::vector<std::int64_t> start_start;
-  geometry::UninitializedVector<ClusterRef> start;
+  KeptVector<ClusterRef> start;
   /// Per root (level-0 cluster): the roots skipped as coplanar with it (each point of the root
   /// skips them too).
   std::vector<std::int32_t> coplanar_roots;

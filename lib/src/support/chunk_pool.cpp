@@ -1,8 +1,11 @@
 // The process's pool of kept chunks and the per-owner arenas carved from them (chunk_pool.hpp).
 #include <panelrad/support/chunk_pool.hpp>
+#include <panelrad/support/kept_vector.hpp>
 #include <panelrad/support/large_buffer.hpp>
 
 #include <algorithm>
+#include <cstring>
+#include <limits>
 #include <new>
 #include <stdexcept>
 #include <string>
@@ -134,5 +137,27 @@ std::size_t ChunkArena::chunk_bytes() const {
     for (const ChunkPool::Chunk& c : s.chunks) bytes += c.bytes;
   return bytes;
 }
+
+namespace kept_detail {
+
+// A kept array's chunk: the chunk's size in its first 64 bytes (the header), the array after it.
+constexpr std::size_t kHeader = 64;
+
+void* acquire(std::size_t bytes) {
+  if (bytes > std::numeric_limits<std::size_t>::max() - kHeader) throw std::bad_alloc();
+  const ChunkPool::Chunk chunk = ChunkPool::process().acquire(bytes + kHeader);
+  std::memcpy(chunk.data, &chunk.bytes, sizeof chunk.bytes);
+  return chunk.data + kHeader;
+}
+
+void give_back(void* p) noexcept {
+  if (!p) return;
+  ChunkPool::Chunk chunk;
+  chunk.data = static_cast<std::byte*>(p) - kHeader;
+  std::memcpy(&chunk.bytes, chunk.data, sizeof chunk.bytes);
+  ChunkPool::process().give_back(chunk);
+}
+
+}  // namespace kept_detail
 
 }  // namespace panelrad

@@ -17,6 +17,7 @@
 #include <panelrad/operator/collocation.hpp>
 #include <panelrad/operator/far_field.hpp>
 #include <panelrad/support/chunk_pool.hpp>
+#include <panelrad/support/kept_vector.hpp>
 #include <panelrad/support/large_buffer.hpp>
 #include <panelrad/operator/linear_operator.hpp>
 #include <panelrad/operator/near_field.hpp>
@@ -377,12 +378,12 @@ class FastOperator final : public RadiosityOperator {
   int terms_ = 0;                                 // (M+1)(M+2)/2
   std::vector<geometry::Index> level_offset_;     // first global id of each level
   // The per-cluster and per-row arrays are sized once and filled by parallel loops (first touch).
-  geometry::UninitializedVector<double> rho_;               // rho(P_i), all n rows (P_i and n_P are the tree's)
+  KeptVector<double> rho_;                             // rho(P_i), all n rows (P_i and n_P are the tree's)
   double unit_scale_ = 1;                         // far field in units of 2^k ~ diameter (exact scaling)
-  geometry::UninitializedVector<ClusterOrigin> cluster_origin_;  // per cluster of levels 0..L-1: A(tau) (scaled), its root's axes
+  KeptVector<ClusterOrigin> cluster_origin_;  // per cluster of levels 0..L-1: A(tau) (scaled), its root's axes
   std::vector<double> leaf_shift_;                // per shape of level L: s (A(root) - C(root)) (scaled), 3 each
   std::vector<PlaneFrame> root_axes_;             // per root: its frame (the axes of all its clusters)
-  geometry::UninitializedVector<std::array<double, 2>> to_parent_;  // per cluster of levels 0..L-1: its A in parent's frame (roots: 0)
+  KeptVector<std::array<double, 2>> to_parent_;  // per cluster of levels 0..L-1: its A in parent's frame (roots: 0)
   // Element moments Int_Delta x^p y^q dS about A(Delta) by shape: per root, the even and the odd
   // elements' (setup_element_data), 2 n0 T values.
   std::vector<double> shape_moments_;
