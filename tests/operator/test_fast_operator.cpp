@@ -137,8 +137,8 @@ TEST_F(CubeLevel3, SameListsAndProductOnKeptChunks) {
   { const FastOperator op(*collocation, FastOptions{}); }
   const std::size_t kept = pool.kept_bytes();
   EXPECT_GT(kept, 0u);
-  std::vector<ChunkPool::Chunk> taken;  // the kept chunks, overwritten with NaN bytes
-  while (pool.kept_bytes() > 0) taken.push_back(pool.acquire(1));
+  const std::vector<ChunkPool::Chunk> taken = pool.take_kept();  // overwritten with NaN bytes
+  EXPECT_EQ(pool.kept_bytes(), 0u);
   for (const ChunkPool::Chunk& c : taken) std::memset(c.data, 0xff, c.bytes);
   for (const ChunkPool::Chunk& c : taken) pool.give_back(c);
   {

@@ -68,6 +68,39 @@ TEST(ChunkPool, SmallestFittingChunkIsTaken) {
   pool.give_back(b);
 }
 
+// A kept chunk more than twice the request (and more than one chunk above it) stays kept.
+TEST(ChunkPool, SmallRequestLeavesALargeChunk) {
+  ChunkPool pool;
+  const ChunkPool::Chunk big = pool.acquire(8 * MiB), fits = pool.acquire(4 * MiB);
+  pool.give_back(big);
+  const ChunkPool::Chunk a = pool.acquire(1);
+  EXPECT_NE(a.data, big.data);
+  EXPECT_EQ(a.bytes, 2 * MiB);
+  pool.give_back(fits);
+  const ChunkPool::Chunk b = pool.acquire(1);  // 4 MiB: one chunk above the request
+  EXPECT_EQ(b.data, fits.data);
+  const ChunkPool::Chunk c = pool.acquire(5 * MiB);  // 6 MiB wanted: the 8 MiB chunk fits
+  EXPECT_EQ(c.data, big.data);
+  EXPECT_EQ(pool.kept_bytes(), 0u);
+  for (const ChunkPool::Chunk& k : {a, b, c}) pool.give_back(k);
+}
+
+TEST(ChunkPool, TakeKeptEmptiesThePool) {
+  ChunkPool pool;
+  const ChunkPool::Chunk a = pool.acquire(1), b = pool.acquire(5 * MiB);
+  pool.give_back(a);
+  pool.give_back(b);
+  std::vector<ChunkPool::Chunk> taken = pool.take_kept();
+  EXPECT_EQ(pool.kept_bytes(), 0u);
+  ASSERT_EQ(taken.size(), 2u);
+  std::sort(taken.begin(), taken.end(),
+            [](const ChunkPool::Chunk& x, const ChunkPool::Chunk& y) { return x.bytes < y.bytes; });
+  EXPECT_EQ(taken[0].data, a.data);
+  EXPECT_EQ(taken[1].data, b.data);
+  for (const ChunkPool::Chunk& k : taken) pool.give_back(k);
+  EXPECT_EQ(pool.kept_bytes(), 8 * MiB);
+}
+
 TEST(ChunkPool, LimitBoundsWhatIsKept) {
   ChunkPool pool;
   EXPECT_EQ(pool.limit(), ChunkPool::kDefaultLimit);

@@ -34,7 +34,9 @@ ChunkPool::Chunk ChunkPool::acquire(std::size_t bytes) {
     const std::lock_guard<std::mutex> lock(mutex_);
     auto best = kept_.end();
     for (auto it = kept_.begin(); it != kept_.end(); ++it)
-      if (it->bytes >= wanted && (best == kept_.end() || it->bytes < best->bytes)) best = it;
+      if (it->bytes >= wanted && it->bytes - wanted <= std::max(wanted, kChunkBytes) &&
+          (best == kept_.end() || it->bytes < best->bytes))
+        best = it;
     if (best != kept_.end()) {
       const Chunk chunk = *best;
       *best = kept_.back();
@@ -71,6 +73,14 @@ void ChunkPool::give_back(Chunk chunk) noexcept {
 void ChunkPool::release() noexcept {
   const std::lock_guard<std::mutex> lock(mutex_);
   trim_to(0);
+}
+
+std::vector<ChunkPool::Chunk> ChunkPool::take_kept() {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<Chunk> taken;
+  taken.swap(kept_);
+  kept_bytes_ = 0;
+  return taken;
 }
 
 void ChunkPool::trim_to(std::size_t bytes) noexcept {

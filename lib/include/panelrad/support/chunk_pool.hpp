@@ -25,14 +25,17 @@ class ChunkPool {
   /// The process's pool (never destroyed, so that owners may give chunks back at exit).
   static ChunkPool& process();
 
-  /// A kept chunk of at least `bytes` (the smallest such), else a new one of `bytes` rounded up
-  /// to kChunkBytes; its contents are unspecified. When the new one cannot be had, the kept
+  /// A kept chunk of at least `bytes` rounded up to kChunkBytes (the smallest such, and only if
+  /// at most twice that or one chunk more: a small array does not take a large array's memory),
+  /// else a new one of that size; its contents are unspecified. When the new one cannot be had, the kept
   /// chunks are freed and it is tried once more; then std::bad_alloc.
   Chunk acquire(std::size_t bytes);
   /// Keeps `chunk` while the kept bytes stay within the limit, else frees it.
   void give_back(Chunk chunk) noexcept;
   /// Frees every kept chunk.
   void release() noexcept;
+  /// Takes every kept chunk out of the pool: the caller's to give back (or to free).
+  std::vector<Chunk> take_kept();
   std::size_t kept_bytes() const;
   std::size_t limit() const;
   /// Sets the most that is kept (0: nothing), freeing what is above it.
