@@ -27,8 +27,8 @@ class ChunkPool {
 
   /// A kept chunk of at least `bytes` rounded up to kChunkBytes (the smallest such, and only if
   /// at most twice that or one chunk more: a small array does not take a large array's memory),
-  /// else a new one of that size; its contents are unspecified. When the new one cannot be had, the kept
-  /// chunks are freed and it is tried once more; then std::bad_alloc.
+  /// else a new one of that size; its contents are unspecified. When the new one cannot be had,
+  /// the kept chunks are freed and it is tried once more; then std::bad_alloc.
   Chunk acquire(std::size_t bytes);
   /// Keeps `chunk` while the kept bytes stay within the limit, else frees it.
   void give_back(Chunk chunk) noexcept;
