@@ -1,5 +1,4 @@
 #include <panelrad/support/large_buffer.hpp>
-#include <panelrad/support/chunk_pool.hpp>
 
 #include <sys/mman.h>
 
@@ -20,15 +19,5 @@ void* allocate(std::size_t bytes) {
 }
 
 void release(void* p) { std::free(p); }
-
-void* acquire_kept(std::size_t bytes, std::size_t& chunk_bytes) {
-  const ChunkPool::Chunk chunk = ChunkPool::process().acquire(bytes);
-  chunk_bytes = chunk.bytes;
-  return chunk.data;
-}
-
-void give_back_kept(void* p, std::size_t chunk_bytes) noexcept {
-  if (p) ChunkPool::process().give_back({static_cast<std::byte*>(p), chunk_bytes});
-}
 
 }  // namespace panelrad::large_buffer_detail

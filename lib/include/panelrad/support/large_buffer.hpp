@@ -6,6 +6,8 @@
 // that a later operator's array of about the same size is written to memory already backed
 // (when the pool's limit lets it keep the chunk). Throws std::bad_alloc when the memory cannot
 // be had.
+#include <panelrad/support/chunk_pool.hpp>
+
 #include <cstddef>
 #include <memory>
 #include <new>
@@ -16,10 +18,6 @@ namespace panelrad {
 namespace large_buffer_detail {
 void* allocate(std::size_t bytes);  ///< 2 MiB aligned, huge pages advised; std::bad_alloc on failure
 void release(void* p);
-/// A chunk of ChunkPool::process() of at least `bytes`; its size is stored in `chunk_bytes`.
-void* acquire_kept(std::size_t bytes, std::size_t& chunk_bytes);
-/// Gives a chunk from acquire_kept back to the pool.
-void give_back_kept(void* p, std::size_t chunk_bytes) noexcept;
 }  // namespace large_buffer_detail
 
 template <class T>
@@ -30,10 +28,9 @@ class LargeArray {
   LargeArray() = default;
   explicit LargeArray(std::size_t count) : size_(count) {
     if (count > static_cast<std::size_t>(-1) / sizeof(T)) throw std::bad_array_new_length();
-    std::size_t chunk_bytes = 0;
     if (count) {
-      T* p = static_cast<T*>(large_buffer_detail::acquire_kept(count * sizeof(T), chunk_bytes));
-      data_ = std::unique_ptr<T[], Free>(p, Free{chunk_bytes});
+      const ChunkPool::Chunk chunk = ChunkPool::process().acquire(count * sizeof(T));
+      data_ = std::unique_ptr<T[], Free>(reinterpret_cast<T*>(chunk.data), Free{chunk.bytes});
     }
   }
   T* data() { return data_.get(); }
@@ -46,7 +43,7 @@ class LargeArray {
  private:
   struct Free {
     std::size_t chunk_bytes = 0;
-    void operator()(T* p) const { large_buffer_detail::give_back_kept(p, chunk_bytes); }
+    void operator()(T* p) const { ChunkPool::process().give_back({reinterpret_cast<std::byte*>(p), chunk_bytes}); }
   };
   std::unique_ptr<T[], Free> data_;
   std::size_t size_ = 0;
