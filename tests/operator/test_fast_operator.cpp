@@ -133,7 +133,7 @@ TEST_F(CubeLevel3, SameListsAndProductOnKeptChunks) {
     fresh = lists(op);
   }
   EXPECT_EQ(pool.kept_bytes(), 0u);
-  pool.set_limit(ChunkPool::kDefaultLimit);
+  pool.set_limit(ChunkPool::kMinDefaultLimit);
   { const FastOperator op(*collocation, FastOptions{}); }
   const std::size_t kept = pool.kept_bytes();
   EXPECT_GT(kept, 0u);
@@ -148,6 +148,39 @@ TEST_F(CubeLevel3, SameListsAndProductOnKeptChunks) {
     op.apply(v, y);
     EXPECT_EQ(0, std::memcmp(y.data(), y_fresh.data(), sizeof(double) * 768));
     EXPECT_TRUE(lists(op) == fresh);
+  }
+  pool.set_limit(saved_limit);
+}
+
+// The stored far coefficients (44)-(45) go back to the pool with their operator: the next
+// operator of the same size stores its coefficients in that chunk (no new memory) and gives the
+// same product bits as one on new memory.
+TEST_F(CubeLevel3, StoredCoefficientsReuseTheKeptChunk) {
+  const Eigen::VectorXd v = random_vector(768, 10);
+  ChunkPool& pool = ChunkPool::process();
+  const std::size_t saved_limit = pool.limit();
+  pool.set_limit(0);
+  Eigen::VectorXd y_fresh;
+  std::size_t store_bytes = 0;
+  {
+    const FastOperator op(*collocation, FastOptions{});
+    ASSERT_TRUE(op.statistics().far_stored);
+    store_bytes = op.statistics().far_pairs * static_cast<std::size_t>(num_taylor_terms(FastOptions{}.degree)) * sizeof(double);
+    op.apply(v, y_fresh);
+  }
+  pool.set_limit(std::size_t{1} << 30);
+  EXPECT_EQ(pool.kept_for(store_bytes), 0u);
+  { const FastOperator op(*collocation, FastOptions{}); }
+  const std::size_t chunk = pool.kept_for(store_bytes);
+  EXPECT_GE(chunk, store_bytes);
+  const std::size_t kept = pool.kept_bytes();
+  {
+    const FastOperator op(*collocation, FastOptions{});
+    ASSERT_TRUE(op.statistics().far_stored);
+    EXPECT_LE(pool.kept_bytes(), kept - chunk);  // the store's chunk, at least, was taken
+    Eigen::VectorXd y;
+    op.apply(v, y);
+    EXPECT_EQ(0, std::memcmp(y.data(), y_fresh.data(), sizeof(double) * 768));
   }
   pool.set_limit(saved_limit);
 }

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <stdexcept>
 #include <utility>
@@ -73,6 +74,8 @@ TEST(ChunkPool, SmallRequestLeavesALargeChunk) {
   ChunkPool pool;
   const ChunkPool::Chunk big = pool.acquire(8 * MiB), fits = pool.acquire(4 * MiB);
   pool.give_back(big);
+  EXPECT_EQ(pool.kept_for(1), 0u);  // kept_for names what acquire hands out: here new memory
+  EXPECT_EQ(pool.kept_for(5 * MiB), 8 * MiB);
   const ChunkPool::Chunk a = pool.acquire(1);
   EXPECT_NE(a.data, big.data);
   EXPECT_EQ(a.bytes, 2 * MiB);
@@ -82,6 +85,8 @@ TEST(ChunkPool, SmallRequestLeavesALargeChunk) {
   const ChunkPool::Chunk c = pool.acquire(5 * MiB);  // 6 MiB wanted: the 8 MiB chunk fits
   EXPECT_EQ(c.data, big.data);
   EXPECT_EQ(pool.kept_bytes(), 0u);
+  EXPECT_EQ(pool.kept_for(5 * MiB), 0u);
+  EXPECT_EQ(pool.kept_for(std::size_t{1} << 63), 0u);
   for (const ChunkPool::Chunk& k : {a, b, c}) pool.give_back(k);
 }
 
@@ -101,9 +106,21 @@ TEST(ChunkPool, TakeKeptEmptiesThePool) {
   EXPECT_EQ(pool.kept_bytes(), 8 * MiB);
 }
 
+// The process's pool keeps a sixteenth of the memory available, in whole chunks, and at least
+// 256 MiB: 1.5 GiB of 24 GiB.
+TEST(ChunkPool, DefaultLimitIsASixteenthOfTheAvailableMemory) {
+  EXPECT_EQ(ChunkPool::default_limit(0), ChunkPool::kMinDefaultLimit);
+  EXPECT_EQ(ChunkPool::default_limit(16 * ChunkPool::kMinDefaultLimit), ChunkPool::kMinDefaultLimit);
+  EXPECT_EQ(ChunkPool::default_limit(24 * 1024 * MiB), 1536 * MiB);
+  EXPECT_EQ(ChunkPool::default_limit(16 * (300 * MiB) + 31 * MiB), 300 * MiB);
+  EXPECT_EQ(ChunkPool::default_limit(16 * (301 * MiB)), 300 * MiB);  // rounded down to whole chunks
+  EXPECT_EQ(ChunkPool::default_limit(std::numeric_limits<std::size_t>::max() / 4), ChunkPool::kMinDefaultLimit);
+  EXPECT_GE(ChunkPool::process().limit(), ChunkPool::kMinDefaultLimit);
+}
+
 TEST(ChunkPool, LimitBoundsWhatIsKept) {
   ChunkPool pool;
-  EXPECT_EQ(pool.limit(), ChunkPool::kDefaultLimit);
+  EXPECT_EQ(pool.limit(), ChunkPool::kMinDefaultLimit);
   pool.set_limit(4 * MiB);
   const ChunkPool::Chunk a = pool.acquire(1), b = pool.acquire(1), c = pool.acquire(1);
   pool.give_back(a);

@@ -628,9 +628,13 @@ void FastOperator::store_coverings() {
   const std::size_t far_coef_bytes = stats_.far_pairs * static_cast<std::size_t>(terms_) * coefficient_bytes();
   const bool pays = options_.expected_products <= 0 ||
                     far_field_costs(options_.degree, coefficient_bytes()).store_pays(options_.expected_products);
-  // The memory gate (files of /proc and the cgroup, serial) only when storing would pay.
-  stats_.far_stored =
-      pays && far_coef_bytes <= (options_.far_storage_limit ? options_.far_storage_limit : available_memory_bytes() / 2);
+  // The memory gate (files of /proc and the cgroup, serial) only when storing would pay and no
+  // chunk kept by the process's pool can take the store (it then needs no new memory).
+  const auto fits = [&] {
+    if (options_.far_storage_limit) return far_coef_bytes <= options_.far_storage_limit;
+    return ChunkPool::process().kept_for(far_coef_bytes) > 0 || far_coef_bytes <= available_memory_bytes() / 2;
+  };
+  stats_.far_stored = pays && fits();
 }
 
 FastOperator::RowLists FastOperator::row_lists(std::size_t r) const {

@@ -2,6 +2,7 @@
 #include <panelrad/support/chunk_pool.hpp>
 #include <panelrad/support/kept_vector.hpp>
 #include <panelrad/support/large_buffer.hpp>
+#include <panelrad/support/resources.hpp>
 
 #include <algorithm>
 #include <cstring>
@@ -21,8 +22,14 @@ std::size_t round_up(std::size_t bytes, std::size_t unit) { return (bytes + unit
 }  // namespace
 
 ChunkPool& ChunkPool::process() {
-  static ChunkPool* const pool = new ChunkPool();  // never destroyed: owners may outlive statics
+  // Never destroyed: owners may outlive statics.
+  static ChunkPool* const pool = new ChunkPool(default_limit(available_memory_bytes()));
   return *pool;
+}
+
+std::size_t ChunkPool::default_limit(std::size_t available) {
+  if (available >= std::numeric_limits<std::size_t>::max() / 4) return kMinDefaultLimit;
+  return std::max(kMinDefaultLimit, available / 16 / kChunkBytes * kChunkBytes);
 }
 
 ChunkPool::~ChunkPool() { release(); }
@@ -32,14 +39,10 @@ ChunkPool::Chunk ChunkPool::acquire(std::size_t bytes) {
   const std::size_t wanted = round_up(std::max<std::size_t>(bytes, 1), kChunkBytes);
   {
     const std::lock_guard<std::mutex> lock(mutex_);
-    auto best = kept_.end();
-    for (auto it = kept_.begin(); it != kept_.end(); ++it)
-      if (it->bytes >= wanted && it->bytes - wanted <= std::max(wanted, kChunkBytes) &&
-          (best == kept_.end() || it->bytes < best->bytes))
-        best = it;
+    const auto best = fitting(wanted);
     if (best != kept_.end()) {
       const Chunk chunk = *best;
-      *best = kept_.back();
+      kept_[static_cast<std::size_t>(best - kept_.cbegin())] = kept_.back();
       kept_.pop_back();
       kept_bytes_ -= chunk.bytes;
       return chunk;
@@ -51,6 +54,23 @@ ChunkPool::Chunk ChunkPool::acquire(std::size_t bytes) {
     release();  // the kept chunks (none large enough) may be what stands in the way
     return {static_cast<std::byte*>(large_buffer_detail::allocate(wanted)), wanted};
   }
+}
+
+std::vector<ChunkPool::Chunk>::const_iterator ChunkPool::fitting(std::size_t wanted) const {
+  auto best = kept_.cend();
+  for (auto it = kept_.cbegin(); it != kept_.cend(); ++it)
+    if (it->bytes >= wanted && it->bytes - wanted <= std::max(wanted, kChunkBytes) &&
+        (best == kept_.cend() || it->bytes < best->bytes))
+      best = it;
+  return best;
+}
+
+std::size_t ChunkPool::kept_for(std::size_t bytes) const {
+  if (bytes > std::size_t{1} << 62) return 0;
+  const std::size_t wanted = round_up(std::max<std::size_t>(bytes, 1), kChunkBytes);
+  const std::lock_guard<std::mutex> lock(mutex_);
+  const auto best = fitting(wanted);
+  return best == kept_.cend() ? 0 : best->bytes;
 }
 
 void ChunkPool::give_back(Chunk chunk) noexcept {

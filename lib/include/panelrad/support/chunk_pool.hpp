@@ -4,9 +4,12 @@
 // with huge pages advised (large_buffer.hpp). When its owner is destroyed the chunk goes back to
 // the process's pool, which keeps it, up to a limit, instead of returning it to the system: the
 // next setup then writes to memory already backed, where new memory costs a page fault per 4 KiB
-// (in a virtual machine, the host backing the page as well) and the allocator may give freed
-// memory back between two setups. The memory gate of a setup (FastOperator) releases the kept
-// chunks before it refuses a size.
+// (in a virtual machine, the host backing the page as well), or the kernel zeroing each huge page
+// on one processor's memory bandwidth, and the allocator may give freed memory back between two
+// setups. The process's pool keeps up to a sixteenth of the memory available when it is first
+// used (at least 256 MiB): enough for the stored far coefficients of n ~ 5e4 on a 24 GB machine.
+// The memory gate of a setup (FastOperator) releases the kept chunks before it refuses a size,
+// and stores the far coefficients without asking for new memory when a kept chunk takes them.
 #include <cstddef>
 #include <mutex>
 #include <vector>
@@ -20,16 +23,24 @@ class ChunkPool {
     std::size_t bytes = 0;
   };
   static constexpr std::size_t kChunkBytes = std::size_t{2} << 20;     ///< the unit: one huge page
-  static constexpr std::size_t kDefaultLimit = std::size_t{256} << 20;  ///< kept at most, by default
+  static constexpr std::size_t kMinDefaultLimit = std::size_t{256} << 20;  ///< kept at most, by default
 
-  /// The process's pool (never destroyed, so that owners may give chunks back at exit).
+  /// The process's pool (never destroyed, so that owners may give chunks back at exit), its
+  /// limit default_limit(available_memory_bytes()) read at the first call.
   static ChunkPool& process();
+  /// The process pool's limit for `available` bytes of memory: the larger of kMinDefaultLimit and
+  /// available / 16, rounded down to whole chunks; kMinDefaultLimit when `available` is unknown
+  /// (SIZE_MAX / 4 or more, as available_memory_bytes() reports no limit).
+  static std::size_t default_limit(std::size_t available);
 
   /// A kept chunk of at least `bytes` rounded up to kChunkBytes (the smallest such, and only if
   /// at most twice that or one chunk more: a small array does not take a large array's memory),
   /// else a new one of that size; its contents are unspecified. When the new one cannot be had,
   /// the kept chunks are freed and it is tried once more; then std::bad_alloc.
   Chunk acquire(std::size_t bytes);
+  /// The size of the kept chunk that acquire(bytes) would hand out now, 0 when it would take new
+  /// memory.
+  std::size_t kept_for(std::size_t bytes) const;
   /// Keeps `chunk` while the kept bytes stay within the limit, else frees it.
   void give_back(Chunk chunk) noexcept;
   /// Frees every kept chunk.
@@ -41,18 +52,20 @@ class ChunkPool {
   /// Sets the most that is kept (0: nothing), freeing what is above it.
   void set_limit(std::size_t bytes);
 
-  ChunkPool() = default;
+  explicit ChunkPool(std::size_t limit = kMinDefaultLimit) : limit_(limit) {}
   ChunkPool(const ChunkPool&) = delete;
   ChunkPool& operator=(const ChunkPool&) = delete;
   ~ChunkPool();
 
  private:
   void trim_to(std::size_t bytes) noexcept;  // with mutex_ held
+  // The kept chunk for a request of `wanted` bytes (whole chunks), or kept_.end(); with mutex_ held.
+  std::vector<Chunk>::const_iterator fitting(std::size_t wanted) const;
 
   mutable std::mutex mutex_;
   std::vector<Chunk> kept_;
   std::size_t kept_bytes_ = 0;
-  std::size_t limit_ = kDefaultLimit;
+  std::size_t limit_;
 };
 
 /// The chunks of one owner, taken from a pool and carved into arrays by up to `slots` threads at
