@@ -13,14 +13,12 @@
 // is the code's share. Beside them: the ratio of the least times of one thread and of two (the
 // machine's noise only adds time, so the least of K runs is the least disturbed). Each pair also
 // checks that every placement gives the same bits: the operators set up on each, applied on each.
-//   - Setup: the operator before is released first. Its near and far lists' chunks stay with the
-//     process (ChunkPool, up to its limit) and the next setup writes its lists there; its other
-//     memory is reused as far as the allocator keeps it: glibc returns blocks above 32 MiB when
-//     they are freed, so such arrays (the cluster frames from n ~ 786,432 on) are first touched
-//     again by every setup. The pages touched for the first time are counted (minor page
-//     faults). --keep-memory has the allocator keep all freed memory, so that setups after the
-//     first measure the code apart from the page faults. The first setup of a process, on memory
-//     new to it, is bench/product's.
+//   - Setup: the operator before is released first. Its chunks (the near and far lists, the
+//     arrays of 256 KiB or more, the stored coefficients) stay with the process (ChunkPool, up to
+//     its limit, a sixteenth of the memory available) and the next setup writes there; its
+//     smaller arrays are reused as far as the allocator keeps them. The pages touched for the
+//     first time are counted (minor page faults). --keep-memory has the allocator keep all freed
+//     memory too. The first setup of a process, on memory new to it, is bench/product's.
 //   - Product: on the last operator set up, one product on each placement first (the product's
 //     workspace), then --pairs K pairs.
 //   - The host's share of the time taken from this machine (steal, /proc/stat) during the runs of
