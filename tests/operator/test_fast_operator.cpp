@@ -165,9 +165,12 @@ TEST_F(CubeLevel3, StoredCoefficientsReuseTheKeptChunk) {
   {
     const FastOperator op(*collocation, FastOptions{});
     ASSERT_TRUE(op.statistics().far_stored);
-    store_bytes = op.statistics().far_pairs * static_cast<std::size_t>(num_taylor_terms(FastOptions{}.degree)) * sizeof(double);
+    const auto terms = static_cast<std::size_t>(num_taylor_terms(FastOptions{}.degree));
+    store_bytes = op.statistics().far_pairs * terms * sizeof(double);
     op.apply(v, y_fresh);
   }
+  // More than one chunk: no chunk of the lists or of a smaller array (one each here) can take it.
+  ASSERT_GT(store_bytes, ChunkPool::kChunkBytes);
   pool.set_limit(std::size_t{1} << 30);
   EXPECT_EQ(pool.kept_for(store_bytes), 0u);
   { const FastOperator op(*collocation, FastOptions{}); }

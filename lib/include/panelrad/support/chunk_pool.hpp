@@ -22,8 +22,9 @@ class ChunkPool {
     std::byte* data = nullptr;
     std::size_t bytes = 0;
   };
-  static constexpr std::size_t kChunkBytes = std::size_t{2} << 20;     ///< the unit: one huge page
-  static constexpr std::size_t kMinDefaultLimit = std::size_t{256} << 20;  ///< kept at most, by default
+  static constexpr std::size_t kChunkBytes = std::size_t{2} << 20;  ///< the unit: one huge page
+  /// The least default limit, and the limit of a pool made without one.
+  static constexpr std::size_t kMinDefaultLimit = std::size_t{256} << 20;
 
   /// The process's pool (never destroyed, so that owners may give chunks back at exit), its
   /// limit default_limit(available_memory_bytes()) read at the first call.
