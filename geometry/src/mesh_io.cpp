@@ -4,12 +4,17 @@
 // make the mesh non-manifold ("complex edge") with a message on stderr instead of an error, accept
 // truncated files silently and give no line numbers, so a bad file could become a silently wrong
 // mesh. The own tokenizer below knows the line of every token and refuses anything it does not
-// understand; the shared vertex structure is built here directly. Measured with Debian's OpenMesh
+// understand; the shared vertex structure is built here directly, and each polygon is triangulated
+// on its own corners or refused (polygon_triangulation.hpp). Measured with Debian's OpenMesh
 // 9.0 (tests/geometry/test_mesh_io.cpp, AgreesWithOpenMeshReader): an OFF with '#' comment lines is read
 // as an empty mesh, an OFF with per-face colours stops after its first face, both without an
 // error, and coordinates are parsed in single precision. OpenMesh's reader stays as an independent
 // cross-check (read_mesh_with_openmesh, openmesh_io.cpp): both agree on well-formed files.
 #include <panelrad/geometry/mesh_io.hpp>
+
+#include "polygon_triangulation.hpp"
+
+#include <panelrad/geometry/input_rounding.hpp>
 #include <panelrad/geometry/text_file.hpp>
 
 #include <algorithm>
@@ -21,6 +26,7 @@
 #include <istream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <string_view>
 #include <system_error>
@@ -33,6 +39,11 @@ constexpr long long kMaxCount = std::numeric_limits<Index>::max();
 [[noreturn]] void fail(const std::string& name, long line, const std::string& what) {
   if (line > 0) throw MeshError(name + ":" + std::to_string(line) + ": " + what);
   throw MeshError(name + ": " + what);
+}
+
+/// How every message names a face: its 0-based number, which is its facet id, and its line.
+std::string input_face(long long f, long line) {
+  return "input face " + std::to_string(f) + " (line " + std::to_string(line) + ")";
 }
 
 std::string show(std::string_view token) {
@@ -175,8 +186,33 @@ struct RawMesh {
   std::vector<long> face_lines;
 };
 
+/// Appends the triangles of face f (vertex numbers of the mesh) as facet f: a triangle as is, a
+/// polygon triangulated on its own corners (polygon_triangulation.hpp) or refused with its line.
+/// `eta` is the per-coordinate rounding of the mesh's coordinates, computed at the first polygon.
+void triangulate_face(TriangleMesh& mesh, const std::vector<Index>& face, std::size_t f, long line,
+                      std::optional<double>& eta, std::vector<Vec3>& corners, const std::string& name,
+                      std::vector<std::string>* notes) {
+  const auto facet = static_cast<Index>(f);
+  if (face.size() == 3) {
+    mesh.triangles.push_back({face[0], face[1], face[2]});
+    mesh.facet_of_triangle.push_back(facet);
+    return;
+  }
+  if (!eta) eta = input_rounding(mesh).per_coordinate;
+  corners.clear();
+  for (Index v : face) corners.push_back(mesh.vertices[static_cast<std::size_t>(v)]);
+  const polygon_detail::PolygonTriangulation t = polygon_detail::triangulate_polygon(corners, *eta);
+  if (!t.refusal.empty()) fail(name, line, input_face(static_cast<long long>(f), line) + " " + t.refusal);
+  if (!t.note.empty() && notes) notes->push_back(name + ":" + std::to_string(line) + ": " + input_face(static_cast<long long>(f), line) + " " + t.note);
+  for (const auto& c : t.triangles) {
+    mesh.triangles.push_back({face[static_cast<std::size_t>(c[0])], face[static_cast<std::size_t>(c[1])],
+                              face[static_cast<std::size_t>(c[2])]});
+    mesh.facet_of_triangle.push_back(facet);
+  }
+}
+
 /// Builds the triangle mesh: merges vertices with identical coordinates, drops unused vertices,
-/// fan-triangulates each face (face i -> facet i).
+/// triangulates each face (face i -> facet i, its line kept in facet_line).
 TriangleMesh build_mesh(const RawMesh& raw, const std::string& name, std::vector<std::string>* notes) {
   const std::size_t nv = raw.vertices.size();
   std::vector<char> used(nv, 0);
@@ -205,15 +241,16 @@ TriangleMesh build_mesh(const RawMesh& raw, const std::string& name, std::vector
 
   const std::size_t nf = raw.face_lines.size();
   mesh.num_facets = static_cast<Index>(nf);
+  mesh.facet_line = raw.face_lines;
+  std::optional<double> eta;
+  std::vector<Index> face;
+  std::vector<Vec3> corners;
   for (std::size_t f = 0; f < nf; ++f) {
     const auto begin = static_cast<std::size_t>(raw.face_offsets[f]);
     const auto end = static_cast<std::size_t>(raw.face_offsets[f + 1]);
-    const Index a = new_index[static_cast<std::size_t>(raw.face_indices[begin])];
-    for (std::size_t k = begin + 1; k + 1 < end; ++k) {
-      mesh.triangles.push_back({a, new_index[static_cast<std::size_t>(raw.face_indices[k])],
-                                new_index[static_cast<std::size_t>(raw.face_indices[k + 1])]});
-      mesh.facet_of_triangle.push_back(static_cast<Index>(f));
-    }
+    face.clear();
+    for (std::size_t k = begin; k < end; ++k) face.push_back(new_index[static_cast<std::size_t>(raw.face_indices[k])]);
+    triangulate_face(mesh, face, f, raw.face_lines[f], eta, corners, name, notes);
   }
   if (notes) {
     if (merged > 0)
@@ -313,7 +350,7 @@ void read_off_vertices(LineCursor& cursor, const OffCounts& counts, const std::s
 /// Face f on line l: 'k i_1 .. i_k' with k >= 3 indices into the nv vertices, optionally followed
 /// by a colour (at most 4 numbers, checked, not used); the indices go into `face`.
 void read_off_face(const Line& l, long long f, long long nv, const std::string& name, std::vector<Index>& face) {
-  const std::string what = "face " + std::to_string(f);
+  const std::string what = input_face(f, l.number);
   long long k = 0;
   if (!parse_integer(l.tokens[0], k))
     fail(name, l.number, what + ": bad vertex count " + show(l.tokens[0]));
@@ -456,7 +493,7 @@ long long obj_vertex_index(std::string_view ref, const Line& l, const std::strin
 /// An "f v1 v2 v3 ..." line: the face, its references kept for the final range check.
 void read_obj_face(const Line& l, const std::string& name, RawMesh& raw, ObjPendingIndices& pending,
                    std::vector<Index>& face) {
-  const std::string what = "face " + std::to_string(raw.face_lines.size() + 1);
+  const std::string what = input_face(static_cast<long long>(raw.face_lines.size()), l.number);
   const std::size_t n = l.tokens.size() - 1;
   if (n < 3) fail(name, l.number, what + " has " + std::to_string(n) + " vertices; a face needs at least 3");
   face.clear();

@@ -346,8 +346,17 @@ TEST(RoundedConvexity, DentsAreRefused) {
           SCOPED_TRACE("dent " + format(delta, 2) + " of the diameter, rotated " + format(degrees, 6) +
                        " deg about " + axis_name + ", " + std::to_string(d) + " digits");
           const Eigen::Matrix3d rot = Eigen::AngleAxisd(degrees * std::numbers::pi / 180, axis).toRotationMatrix();
-          pg::TriangleMesh m = read_text_mesh(
-              map_vertices(text, false, [&](const pg::Vec3& p) { return (rot * p).eval(); }, d), false, "dent.off");
+          pg::TriangleMesh m;
+          try {
+            m = read_text_mesh(map_vertices(text, false, [&](const pg::Vec3& p) { return (rot * p).eval(); }, d),
+                               false, "dent.off");
+          } catch (const pg::MeshError& e) {
+            // A dent deeper than 1e-4 of a grid polygon's size makes that polygon non-planar
+            // beyond what the reader triangulates (mesh_io.hpp): refused there, by name.
+            EXPECT_CONTAINS(e.what(), "is not planar");
+            EXPECT_GE(delta, 1e-4);
+            continue;
+          }
           const double measured = worst_outside_distance(m) / diameter(m);
           const pg::ValidationReport r = pg::validate_closed_convex(m);
           if (d == 6 && k > 3) {

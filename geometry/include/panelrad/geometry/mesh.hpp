@@ -26,6 +26,9 @@ struct TriangleMesh {
   std::vector<Index> facet_of_triangle;         ///< input facet id per triangle, in [0, num_facets)
   Index num_facets = 0;
   std::string source;                           ///< file name or built-in name, for messages
+  /// Per facet, the 1-based line of the file where its face is written (read_mesh); empty for
+  /// meshes built in code. Messages name facet f as "input face f (line L)".
+  std::vector<long> facet_line;
 };
 
 /// Any problem with mesh input or geometry: the message names what, where and which rule.

@@ -1,8 +1,39 @@
 #pragma once
-// Mesh input: OFF and OBJ files. Polygonal faces are fan-triangulated here (validation may
-// re-triangulate them exactly, see validation.hpp); vertices are shared: vertices with exactly the
-// same coordinates are merged (so a "triangle soup" works) and vertices used by no face are
-// dropped, each reported in `notes`. Input face i becomes facet i.
+// Mesh input: OFF and OBJ files. Vertices are shared: vertices with exactly the same coordinates
+// are merged (so a "triangle soup" works) and vertices used by no face are dropped, each reported
+// in `notes`. Input face i becomes facet i, and TriangleMesh::facet_line[i] is the line where it is
+// written; every message names it "input face i (line L)", i counted from 0 in both formats (as
+// facet ids everywhere, e.g. in a scene's JSON sidecar).
+//
+// Faces are triangulated on their own corners, no point added, every triangle running in the face's
+// rotational direction (validation may re-triangulate convex meshes exactly, see validation.hpp).
+// A triangle is kept as written. A polygon P = (p_0, ..., p_{n-1}), n >= 4, must be a planar simple
+// polygon, else the reader refuses it naming the file, the face and its line:
+//   - no vertex twice in one face, and not all vertices on one straight line (zero area);
+//   - planar: with c the mean of its vertices and N its Newell normal sum_i (p_i - c) x (p_{i+1} - c),
+//     every vertex lies within
+//         max(1e-9 * s, 4 * eta)
+//     of the plane through c normal to N; s is the diagonal of the polygon's axis-parallel bounding
+//     box, eta the per-coordinate rounding of the whole mesh's coordinates (InputRounding::
+//     per_coordinate, input_rounding.hpp: 5e-6 M for coordinates of at most 6 significant digits
+//     and largest magnitude M, 1.8e-15 M for 17-digit doubles). Rounding moves each coordinate by
+//     at most eta, so 4 eta covers a well-shaped planar polygon written with 6 significant digits
+//     at any offset (a sliver, much narrower than long, tilts its Newell plane more and may need
+//     more digits). Beyond that tolerance but within 1e-4 s (the largest violation ever put down
+//     to rounding, kMaxRoundingViolation of input_rounding.hpp: a rounded export rotated and
+//     rewritten with more digits, whose digits no longer show its rounding) the polygon is
+//     triangulated as projected along N, each triangle in its own plane, with a note naming the
+//     face, its line and the distance; beyond 1e-4 s it is refused: a unit square with one corner
+//     lifted by 1e-2 is (its corners lie 2.5e-3 from that plane), "split it into planar polygons
+//     or triangles";
+//   - simple (exact predicates, on P projected to the coordinate plane that drops the largest
+//     component of N): sides meet only at the corner two consecutive sides share; a polygon that
+//     crosses or touches itself is refused.
+// Vertices on a straight side are corners of the triangles (no zero-area triangle is made). When
+// the fan (p_0, p_k, p_{k+1}), k = 1..n-2, is a triangulation of P (each fan triangle non-degenerate
+// with P's orientation, the fan less than a full turn around p_0; in particular for every convex
+// polygon without a straight corner), the fan is the output; otherwise P's constrained Delaunay
+// triangulation in that projection (non-convex faces, e.g. an L-shaped wall written as one polygon).
 //
 // Accepted OFF: optional header keyword OFF / COFF / NOFF / CNOFF / STOFF ... (counts may follow on
 // the same line), "#" comments, one vertex per line (x y z, then any extra numbers such as normals
@@ -27,8 +58,9 @@ namespace panelrad::geometry {
 
 /// Reads an OFF or OBJ file, chosen by extension (case-insensitive). Throws MeshError naming the
 /// file, the line and what is wrong: missing/unreadable file, not a regular file, above the size
-/// limit, a NUL byte, unknown extension, empty or truncated file, garbage, a face index out of range, a face with fewer than 3 vertices, a
-/// non-finite coordinate. Never returns a partial mesh.
+/// limit, a NUL byte, unknown extension, empty or truncated file, garbage, a face index out of range,
+/// a face with fewer than 3 vertices, a non-finite coordinate, a polygon that is not a planar simple
+/// polygon (above). Never returns a partial mesh.
 /// Notes (merged duplicate vertices, dropped unused vertices) are appended to `notes` when given.
 /// What an OBJ file says about materials (for scene files, which give rho and E per material):
 /// its `mtllib` statements and, per input face (= facet), the `usemtl` name in force. Geometry
