@@ -1,0 +1,30 @@
+#pragma once
+// T-junctions: a vertex of the surface lying in the open segment of an edge of another triangle.
+// The topology rules match edges by vertex indices, so an edge (a, b) whose neighbours meet it in
+// the two edges (a, v) and (v, b) is seen as a boundary edge of an open surface although the
+// surface closes geometrically. Inserting v into (a, b) restores the index matching.
+// Private to geometry/src (t_junctions.cpp); the declaration needs no CGAL type, so that the tests
+// can call it directly.
+#include <panelrad/geometry/mesh.hpp>
+
+#include <cstddef>
+
+namespace panelrad::geometry::validation_detail {
+
+/// Inserts every vertex lying strictly inside a boundary edge into that edge: a boundary edge is an
+/// undirected edge {a, b} (by vertex indices) used by exactly one triangle, and a vertex v (used by
+/// some triangle) lies strictly inside it when a, v, b are collinear and v is strictly between a
+/// and b, both decided by exact predicates (no tolerance; a vertex at the coordinates of a or b is
+/// not inside). The triangle (a, b, c) with v_1, ..., v_k inside (a, b), ordered from a to b, is
+/// replaced by the fan (a, v_1, c), (v_1, v_2, c), ..., (v_k, b, c): the same orientation, the
+/// same facet, the same area and no degenerate piece (c is off the line (a, b), and the v_i are
+/// distinct points of it). Repeated until no boundary edge has a vertex inside;
+/// triangles with collinear vertices are left as they are. Returns the number of vertices inserted
+/// into edges (0: mesh unchanged). Vertices are never added or moved.
+/// Cost: O(T log T) per round plus the exact tests of the candidate pairs, found by
+/// CGAL::box_intersection_d between the vertices and boxes covering each boundary edge in pieces of
+/// about the median edge length. At most three rounds change the mesh (a triangle is split along
+/// one edge per round, and the edges a split creates have no vertex inside).
+std::size_t split_t_junctions(TriangleMesh& mesh);
+
+}  // namespace panelrad::geometry::validation_detail
