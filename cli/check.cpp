@@ -74,10 +74,15 @@ int run_check(const CLI::App& app, const CheckCommandLine& line) {
   for (const std::string& n : notes) std::cout << "note: " << n << "\n";
   for (const std::string& n : report.notes) std::cout << "note: " << n << "\n";
   if (report.valid && report.shape == geometry::SceneShape::convex) {
+    std::cout << "front side: inward (the closed convex surface is an enclosure, seen from inside)\n";
     std::cout << "valid: closed convex polyhedron\n";
     return 0;
   }
   if (report.valid) {
+    if (report.t_junctions_split > 0) std::cout << "T-junctions split: " << report.t_junctions_split << "\n";
+    std::cout << "pieces against the file's winding: " << report.pieces_against_file << "\n";
+    std::cout << "faces in contact: " << report.contacts.size() << " pairs, area removed " << report.contact_area_removed
+              << "\n";
     std::cout << "valid: general scene (" << report.pieces << " piece" << (report.pieces == 1 ? "" : "s") << ", "
               << report.closed_pieces << " closed): the visibility V(P,Q) is computed\n";
     return 0;

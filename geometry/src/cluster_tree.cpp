@@ -348,7 +348,8 @@ std::size_t ClusterTree::bytes() const {
 ClusterTree::ClusterTree(const TriangleMesh& mesh, int finest_level)
     : ClusterTree(mesh, finest_level, default_memory_limit()) {}
 
-ClusterTree::ClusterTree(const TriangleMesh& mesh, int finest_level, std::size_t memory_limit_bytes) {
+ClusterTree::ClusterTree(const TriangleMesh& mesh, int finest_level, std::size_t memory_limit_bytes,
+                         PlaneGrouping planes) {
   const std::string name = mesh.source.empty() ? std::string("mesh") : "mesh '" + mesh.source + "'";
   // --- checks before any allocation --------------------------------------------------------------
   const Index n0 = checked_root_count(mesh, finest_level, name);
@@ -378,7 +379,7 @@ ClusterTree::ClusterTree(const TriangleMesh& mesh, int finest_level, std::size_t
   diameter_ = bounding_box_diameter(corners);
 
   // --- supporting planes of the roots (coplanar clusters, section 4.2 case (a)) -------------------
-  const std::vector<Index> facet_plane = facet_planes(mesh);
+  const std::vector<Index> facet_plane = facet_planes(mesh, planes);
   root_plane_.resize(static_cast<std::size_t>(n0));
   for (Index k = 0; k < n0; ++k) {
     root_plane_[static_cast<std::size_t>(k)] = facet_plane[static_cast<std::size_t>(roots[static_cast<std::size_t>(k)].facet)];

@@ -19,6 +19,8 @@
 // - otherwise each triangle strictly straddles the other's plane: the intersection S is computed
 //   with exact constructions (Epeck), a point or a segment; they cross iff the midpoint of S
 //   (S itself when a point) lies in the relative interior of both triangles.
+// With `overlaps`, coplanar overlaps of two input faces are not refused here but listed: faces in
+// contact are resolved once their front sides are known (contact_removal.cpp).
 // The crossing point reported is that midpoint, or for a coplanar overlap the mean of the vertices
 // of the (convex, positive-area) intersection polygon, an interior point of it.
 #include "validation_internal.hpp"
@@ -113,13 +115,17 @@ std::optional<Meeting> meeting_point(const ExactTriangle& t1, const ExactTriangl
 }
 
 /// The crossing point of triangles i and j, or nothing when they only touch or are apart.
-std::optional<Vec3> crossing_point(const TriangleMesh& mesh, const std::vector<Point>& p, Index i, Index j) {
+/// `coplanar` is set when they overlap in one plane with positive area.
+std::optional<Vec3> crossing_point(const TriangleMesh& mesh, const std::vector<Point>& p, Index i, Index j,
+                                   bool& coplanar) {
+  coplanar = false;
   const Tri& t1 = mesh.triangles[at(i)];
   const Tri& t2 = mesh.triangles[at(j)];
   const int s21 = straddles(p, t1, t2);
   if (s21 < 0) return std::nullopt;
   if (s21 == 0) {  // coplanar
     if (edge_separates(p, t1, t2) || edge_separates(p, t2, t1)) return std::nullopt;
+    coplanar = true;
     const ExactTriangle e1 = exact_triangle(mesh, t1), e2 = exact_triangle(mesh, t2);
     const std::optional<Meeting> m = meeting_point(e1, e2);
     // The overlap has positive area, so the exact intersection is a triangle or a polygon; the
@@ -142,7 +148,8 @@ std::string point_text(const Vec3& x) {
 
 }  // namespace
 
-std::optional<Failure> check_no_crossing(const TriangleMesh& mesh, const std::vector<Point>& pts) {
+std::optional<Failure> check_no_crossing(const TriangleMesh& mesh, const std::vector<Point>& pts,
+                                         std::vector<Overlap>* overlaps) {
   const Sz nt = mesh.triangles.size();
   std::vector<Box> boxes;
   boxes.reserve(nt);
@@ -160,12 +167,16 @@ std::optional<Failure> check_no_crossing(const TriangleMesh& mesh, const std::ve
   std::sort(candidates.begin(), candidates.end());
   candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
   for (const auto& [i, j] : candidates) {
-    const std::optional<Vec3> x = crossing_point(mesh, pts, i, j);
+    bool coplanar = false;
+    const std::optional<Vec3> x = crossing_point(mesh, pts, i, j, coplanar);
     if (!x) continue;
     const Describe d{mesh};
     const Index fi = mesh.facet_of_triangle[at(i)], fj = mesh.facet_of_triangle[at(j)];
-    const std::string faces = fi == fj ? "input face " + std::to_string(fi) + " crosses itself"
-                                       : "input faces " + std::to_string(fi) + " and " + std::to_string(fj) + " cross";
+    if (coplanar && overlaps && fi != fj) {  // faces in contact, or given twice: remove_contacts decides
+      overlaps->push_back({i, j, *x});
+      continue;
+    }
+    const std::string faces = fi == fj ? d.face(fi) + " crosses itself" : d.faces(fi, fj) + " cross";
     return Failure{"crossing", faces + " at " + point_text(*x) + ": " + d.triangle(i) + " and " + d.triangle(j) +
                                    " have interior points in common, so neither lies on one side of the other and "
                                    "their front sides (what emits, reflects and is seen) are not defined there; "

@@ -39,7 +39,7 @@ constexpr double kCell = 1e-3;
 
 }  // namespace
 
-std::vector<Index> facet_planes(const TriangleMesh& mesh) {
+std::vector<Index> facet_planes(const TriangleMesh& mesh, PlaneGrouping grouping) {
   const Sz nt = mesh.triangles.size();
   const Sz nf = static_cast<Sz>(std::max<Index>(mesh.num_facets, 0));
   if (mesh.facet_of_triangle.size() != nt) throw MeshError("facet_planes: facet_of_triangle has the wrong size");
@@ -64,12 +64,31 @@ std::vector<Index> facet_planes(const TriangleMesh& mesh) {
     const Vec3& v = corner(t, k);
     return Point(v.x(), v.y(), v.z());
   };
+  // The geometric normals of triangles w and g point the same way (both nearly in one plane here,
+  // so the sign of their dot product is far from rounding; edges scaled as below).
+  const auto same_orientation = [&](Index w, Index g) {
+    const auto normal = [&](Index t) {
+      Vec3 u = corner(t, 1) - corner(t, 0), v = corner(t, 2) - corner(t, 0);
+      const double big = std::max(u.cwiseAbs().maxCoeff(), v.cwiseAbs().maxCoeff());
+      if (big > 0 && std::isfinite(big)) {
+        const double s = std::ldexp(1.0, -std::ilogb(big));
+        u *= s;
+        v *= s;
+      }
+      return Vec3(u.cross(v));
+    };
+    return normal(w).dot(normal(g)) > 0;
+  };
   // Facet g's triangle lies in the plane of the witness triangle w: each corner exactly coplanar
-  // with w's corners, or within bound(w, v) of w's plane and kMaxRoundingViolation of the diameter.
+  // with w's corners, or, when both face the same way, within bound(w, v) of w's plane and
+  // kMaxRoundingViolation of the diameter. Two faces of opposite orientation are joined only when
+  // exactly coplanar: across any positive gap they face each other (or turn their backs to each
+  // other) and G(P, Q) of (2) is not zero between them.
   const auto in_plane_of = [&](Index w, Index g) {
     const Point a = point(w, 0), b = point(w, 1), c = point(w, 2);
     for (int k = 0; k < 3; ++k) {
       if (CGAL::orientation(a, b, c, point(g, k)) == CGAL::COPLANAR) continue;
+      if (grouping == PlaneGrouping::exact || !same_orientation(w, g)) return false;
       if (!rounding) rounding = input_rounding(mesh);
       const Vec3 &va = corner(w, 0), &vb = corner(w, 1), &vc = corner(w, 2), &v = corner(g, k);
       const double d = std::abs(plane_distance(va, vb, vc, v)), bound = rounding_bound(va, vb, vc, v, rounding->per_coordinate);
@@ -86,7 +105,7 @@ std::vector<Index> facet_planes(const TriangleMesh& mesh) {
     while (group[at(x)] != x) x = group[at(x)] = group[at(group[at(x)])];
     return x;
   };
-  {
+  if (grouping == PlaneGrouping::within_rounding) {
     const std::vector<Index> cls = planar_facet_classes(mesh);
     for (Sz t = 0; t < nt; ++t) {
       const Index a = find(mesh.facet_of_triangle[t]), b = find(mesh.facet_of_triangle[at(cls[t])]);

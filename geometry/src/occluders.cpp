@@ -192,6 +192,30 @@ struct Occluders::Impl {
   }
 };
 
+namespace {
+
+/// The bounding-box diagonal of the corners of the mesh's triangles.
+double used_diameter(const TriangleMesh& mesh) {
+  std::vector<Vec3> used;
+  used.reserve(3 * mesh.triangles.size());
+  for (const auto& t : mesh.triangles)
+    for (Index i : t) used.push_back(mesh.vertices[static_cast<std::size_t>(i)]);
+  return bounding_box_diameter(used);
+}
+
+}  // namespace
+
+double visibility_margin(const TriangleMesh& mesh) {
+  // The relative margin, and never less than the rounding of the coordinates themselves: a
+  // distance to a plane computed from points at |x| carries an error of a few eps |x| (a
+  // collocation point on its own face may come out behind it), so 64 eps max|x| is added, which
+  // matters only for scenes far from the origin relative to their size.
+  double max_abs = 0;
+  for (const auto& t : mesh.triangles)
+    for (Index i : t) max_abs = std::max(max_abs, mesh.vertices[static_cast<std::size_t>(i)].cwiseAbs().maxCoeff());
+  return kShadowMargin * used_diameter(mesh) + 64 * std::numeric_limits<double>::epsilon() * max_abs;
+}
+
 Occluders::Occluders(const TriangleMesh& mesh) : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   const std::size_t nv = mesh.vertices.size();
@@ -216,17 +240,8 @@ Occluders::Occluders(const TriangleMesh& mesh) : impl_(std::make_unique<Impl>())
     m.faces.push_back(make_face(v));
     m.cgal_triangles.emplace_back(point(v[0]), point(v[1]), point(v[2]));
   }
-  std::vector<Vec3> used;
-  used.reserve(3 * m.triangles.size());
-  for (const auto& v : m.triangles) used.insert(used.end(), v.begin(), v.end());
-  m.diameter = bounding_box_diameter(used);
-  // The relative margin, and never less than the rounding of the coordinates themselves: a
-  // distance to a plane computed from points at |x| carries an error of a few eps |x| (a
-  // collocation point on its own face may come out behind it), so 64 eps max|x| is added, which
-  // matters only for scenes far from the origin relative to their size.
-  double max_abs = 0;
-  for (const Vec3& v : used) max_abs = std::max(max_abs, v.cwiseAbs().maxCoeff());
-  m.margin = kShadowMargin * m.diameter + 64 * std::numeric_limits<double>::epsilon() * max_abs;
+  m.diameter = used_diameter(mesh);
+  m.margin = visibility_margin(mesh);
   m.tree.insert(m.cgal_triangles.cbegin(), m.cgal_triangles.cend());
   m.tree.build();  // now, not lazily in a const query: the queries run concurrently
 }

@@ -42,12 +42,24 @@ using SideOfMesh = CGAL::Side_of_triangle_mesh<SurfaceMesh, Kernel>;
 /// The pieces listed in the notes one by one; above this count, one summary note.
 constexpr Sz kMaxPieceNotes = 8;
 
+/// What a piece is, and so which of its sides is the front (the paper's inner normal n).
+enum class Kind {
+  open,       ///< not closed: the front is the side from which its faces run counter-clockwise
+  enclosure,  ///< closed, seen from inside (a room): front side inward
+  object,     ///< closed, seen from outside (a body): front side outward
+  cavity,     ///< closed, inside an object (a hollow in a body): front side inward
+};
+
 struct Piece {
   std::vector<Index> triangles;
   bool closed = true;
   Sz flipped = 0;                 // triangles flipped to agree with most of the piece's area
   std::vector<Index> containers;  // closed pieces that contain this one (closed pieces only)
   Index parent = kNone;           // the innermost of them
+  Kind kind = Kind::open;
+  std::string why;                // the rule that gave the kind (closed pieces)
+  bool file_front_outward = false;  // closed: the file's winding (most of the area) makes the outside the front
+  bool against_file = false;      // the front side chosen is the back side of the file's winding
 };
 
 double area(const TriangleMesh& mesh, const Tri& t) {
@@ -107,14 +119,22 @@ std::unique_ptr<ClosedSurface> closed_surface(const TriangleMesh& m) {
   return cs;
 }
 
+CGAL::Bbox_3 mesh_box(const TriangleMesh& m) {
+  CGAL::Bbox_3 box;
+  for (const Vec3& v : m.vertices) box += CGAL::Bbox_3(v.x(), v.y(), v.z(), v.x(), v.y(), v.z());
+  return box;
+}
+
 bool box_inside(const CGAL::Bbox_3& inner, const CGAL::Bbox_3& outer) {
   for (int k = 0; k < 3; ++k)
     if (inner.min(k) < outer.min(k) || inner.max(k) > outer.max(k)) return false;
   return true;
 }
 
-/// Whether `inner` (a closed piece, touching allowed) lies inside the closed surface `outer`.
-bool lies_inside(const TriangleMesh& inner, const ClosedSurface& outer) {
+/// Whether `inner` (a piece, touching allowed) lies inside the closed surface `outer`: decided by
+/// its first vertex, else triangle centroid, off that surface; nothing when it lies wholly on it
+/// (a sheet on a wall: neither inside nor outside).
+std::optional<bool> lies_inside(const TriangleMesh& inner, const ClosedSurface& outer) {
   const SideOfMesh& side = *outer.side;
   for (const Vec3& v : inner.vertices) {
     const CGAL::Bounded_side s = side(Point(v.x(), v.y(), v.z()));
@@ -125,8 +145,25 @@ bool lies_inside(const TriangleMesh& inner, const ClosedSurface& outer) {
     const CGAL::Bounded_side s = side(Point(c.x(), c.y(), c.z()));
     if (s != CGAL::ON_BOUNDARY) return s == CGAL::ON_BOUNDED_SIDE;
   }
-  return false;  // every vertex and centroid on the other surface: they would overlap, refused as crossing
+  return std::nullopt;
 }
+
+}  // namespace
+
+std::string front_side_words(FrontSide side, bool against_file) {
+  std::string s;
+  switch (side) {
+    case FrontSide::open: return "an open surface, front side where its faces run counter-clockwise, as the file winds it";
+    case FrontSide::enclosure: s = "an enclosure, front side inward"; break;
+    case FrontSide::object: s = "an object, front side outward"; break;
+    case FrontSide::cavity: s = "a cavity, front side inward"; break;
+  }
+  if (!against_file) return s + ", as the file winds it";
+  return s + ", against the file's winding (its faces run counter-clockwise seen from " +
+         (side == FrontSide::object ? "inside" : "outside") + ")";
+}
+
+namespace {
 
 std::string piece_name(Sz i, const Piece& p) {
   return "piece " + std::to_string(i) + " (" + std::to_string(p.triangles.size()) +
@@ -139,40 +176,55 @@ std::string flipped_text(const Piece& p) {
          " flipped to agree with most of its area";
 }
 
+/// The individual piece notes at most; the rest are summarised (pieces against the file's
+/// winding are listed first, as they are what a reader must check).
+constexpr Sz kMaxListedPieces = 16;
+
+std::string piece_text(Sz i, const Piece& p) {
+  std::string what = front_side_words(p.kind == Kind::open       ? FrontSide::open
+                                      : p.kind == Kind::object   ? FrontSide::object
+                                      : p.kind == Kind::cavity   ? FrontSide::cavity
+                                                                 : FrontSide::enclosure,
+                                      p.against_file);
+  if (!p.why.empty()) what += " (" + p.why + ")";
+  return piece_name(i, p) + ": " + what + flipped_text(p);
+}
+
 void note_pieces(const std::vector<Piece>& pieces, std::vector<std::string>& notes) {
   if (pieces.size() <= kMaxPieceNotes) {
-    for (Sz i = 0; i < pieces.size(); ++i) {
-      const Piece& p = pieces[i];
-      std::string what;
-      if (!p.closed)
-        what = "an open surface, front side where its faces run counter-clockwise";
-      else if (p.parent == kNone)
-        what = "an enclosure inside no other closed piece, front side inward";
-      else
-        what = "an object inside piece " + std::to_string(p.parent) + ", front side outward";
-      notes.push_back(piece_name(i, p) + ": " + what + flipped_text(p));
-    }
+    for (Sz i = 0; i < pieces.size(); ++i) notes.push_back(piece_text(i, pieces[i]));
     return;
   }
-  Sz enclosures = 0, objects = 0, open = 0, flipped = 0, flipped_pieces = 0;
-  Index first_flipped = kNone;
-  for (Sz i = 0; i < pieces.size(); ++i) {
-    const Piece& p = pieces[i];
-    (!p.closed ? open : p.parent == kNone ? enclosures : objects) += 1;
-    if (p.flipped > 0) {
-      flipped += p.flipped;
-      ++flipped_pieces;
-      if (first_flipped == kNone) first_flipped = static_cast<Index>(i);
-    }
+  Sz counts[4] = {0, 0, 0, 0}, flipped = 0, flipped_pieces = 0, against = 0;
+  for (const Piece& p : pieces) {
+    ++counts[static_cast<int>(p.kind)];
+    flipped += p.flipped;
+    flipped_pieces += p.flipped > 0;
+    against += p.against_file;
   }
-  std::string s = std::to_string(pieces.size()) + " pieces: " + std::to_string(enclosures) +
-                  " enclosures (closed, inside no other; front side inward), " + std::to_string(objects) +
-                  " objects (closed, inside another; front side outward), " + std::to_string(open) +
-                  " open (front side where the faces run counter-clockwise)";
+  std::string s = std::to_string(pieces.size()) + " pieces: " + std::to_string(counts[1]) +
+                  " enclosures (front side inward), " + std::to_string(counts[2]) + " objects (front side outward), " +
+                  std::to_string(counts[3]) + " cavities (front side inward), " + std::to_string(counts[0]) +
+                  " open (front side where the faces run counter-clockwise); " + std::to_string(against) +
+                  " against the file's winding";
   if (flipped > 0)
     s += "; " + std::to_string(flipped) + " triangles in " + std::to_string(flipped_pieces) +
-         " pieces flipped to agree with most of their piece's area (first: piece " + std::to_string(first_flipped) + ")";
+         " pieces flipped to agree with most of their piece's area";
   notes.push_back(s);
+  // Each closed piece, those against the file's winding first, up to kMaxListedPieces.
+  Sz listed = 0, left = 0;
+  for (int pass = 0; pass < 2; ++pass)
+    for (Sz i = 0; i < pieces.size(); ++i) {
+      const Piece& p = pieces[i];
+      if (!p.closed || p.against_file != (pass == 0)) continue;
+      if (listed < kMaxListedPieces) {
+        notes.push_back(piece_text(i, p));
+        ++listed;
+      } else {
+        ++left;
+      }
+    }
+  if (left > 0) notes.push_back("and " + std::to_string(left) + " more closed pieces, each as the file winds it or by the same rules");
 }
 
 }  // namespace
@@ -235,45 +287,108 @@ std::optional<Failure> orient_scene_pieces(TriangleMesh& mesh, ScenePieces& out)
     pieces.push_back(std::move(piece));
   }
 
-  // 3. Nesting of the closed pieces.
+  // 3. Nesting of the closed pieces, and which pieces lie inside the closed pieces inside no other.
   std::vector<Index> closed;
   for (Sz i = 0; i < pieces.size(); ++i)
     if (pieces[i].closed) closed.push_back(static_cast<Index>(i));
-  std::vector<TriangleMesh> closed_meshes;
-  std::vector<std::unique_ptr<ClosedSurface>> surfaces;
-  for (Index i : closed) {
-    closed_meshes.push_back(piece_mesh(mesh, pieces[at(i)]));
-    surfaces.push_back(closed.size() > 1 ? closed_surface(closed_meshes.back()) : nullptr);
-  }
-  for (Sz a = 0; a < closed.size() && closed.size() > 1; ++a)
-    for (Sz b = 0; b < closed.size(); ++b)
-      if (a != b && box_inside(surfaces[b]->box, surfaces[a]->box) && lies_inside(closed_meshes[b], *surfaces[a]))
-        pieces[at(closed[b])].containers.push_back(closed[a]);
+  std::vector<TriangleMesh> piece_meshes(pieces.size());
+  for (Sz i = 0; i < pieces.size(); ++i) piece_meshes[i] = piece_mesh(mesh, pieces[i]);
+  std::vector<std::unique_ptr<ClosedSurface>> surfaces(pieces.size());
+  if (pieces.size() > 1)
+    for (Index i : closed) surfaces[at(i)] = closed_surface(piece_meshes[at(i)]);
+  // +1 inside, -1 outside, 0 on the surface (neither).
+  const auto where = [&](Sz inner, Index outer) {
+    if (!box_inside(mesh_box(piece_meshes[inner]), surfaces[at(outer)]->box)) return -1;
+    const std::optional<bool> in = lies_inside(piece_meshes[inner], *surfaces[at(outer)]);
+    return !in ? 0 : *in ? 1 : -1;
+  };
+  for (Index a : closed)
+    for (Index b : closed)
+      if (a != b && surfaces[at(a)] && where(at(b), a) == 1) pieces[at(b)].containers.push_back(a);
   for (Index i : closed) {
     Piece& p = pieces[at(i)];
     for (Index c : p.containers)
       if (p.parent == kNone || pieces[at(c)].containers.size() > pieces[at(p.parent)].containers.size()) p.parent = c;
   }
 
-  // 4. Stored clockwise from the front: an open piece reversed (its counter-clockwise side is the
-  // front); a closed piece counter-clockwise from outside when an enclosure (front inward),
-  // from inside when an object (front outward).
-  for (Sz k = 0; k < closed.size(); ++k) {
-    const Piece& p = pieces[at(closed[k])];
-    const TriangleMesh& m = closed_meshes[k];
+  // 4. The kind of each closed piece. The file's winding first: the sign of the enclosed volume of
+  // the piece as it runs now (most of its area as in the file), +1 when counter-clockwise seen from
+  // outside, i.e. the file puts the front outside.
+  for (Index i : closed) {
+    Piece& p = pieces[at(i)];
+    const TriangleMesh& m = piece_meshes[at(i)];
     const int sign = volume_sign(m, m.vertices[0]);
     if (sign == 0)
-      return Failure{"non-degenerate", piece_name(at(closed[k]), p) + ", starting at " + d.triangle(p.triangles[0]) +
+      return Failure{"non-degenerate", piece_name(at(i), p) + ", starting at " + d.triangle(p.triangles[0]) +
                                            ", encloses zero volume, so it has no inside and outside to choose a "
                                            "front side from; remove it or give it a volume"};
-    const int want = p.parent == kNone ? 1 : -1;
-    if (sign != want)
+    p.file_front_outward = sign > 0;
+  }
+  // Closed pieces inside no other: an enclosure when nothing of the scene lies outside it, an
+  // object when something does and nothing lies inside it; when both, the file's winding decides.
+  for (Index i : closed) {
+    Piece& p = pieces[at(i)];
+    if (p.parent != kNone) continue;
+    bool contains = false, outside = false;
+    for (Sz j = 0; j < pieces.size() && !(contains && outside); ++j) {
+      if (j == at(i)) continue;
+      const int w = pieces[j].closed ? (std::find(pieces[j].containers.begin(), pieces[j].containers.end(), i) !=
+                                                pieces[j].containers.end()
+                                            ? 1
+                                            : where(j, i))
+                                     : where(j, i);
+      if (w == 1) contains = true;
+      if (w == -1) outside = true;
+    }
+    if (!outside) {
+      p.kind = Kind::enclosure;
+      p.why = contains ? "every other piece lies inside it" : "the only piece of the scene";
+    } else if (!contains) {
+      p.kind = Kind::object;
+      p.why = "other pieces lie outside it and none inside";
+    } else {
+      p.kind = p.file_front_outward ? Kind::object : Kind::enclosure;
+      p.why = "pieces lie both inside and outside it, so the file's winding decides";
+    }
+  }
+  // Nested pieces alternate, from the outermost in: inside an enclosure or a cavity an object,
+  // inside an object a cavity. Containers have fewer containers, so the order of depth is safe.
+  std::vector<Index> by_depth = closed;
+  std::stable_sort(by_depth.begin(), by_depth.end(),
+                   [&](Index a, Index b) { return pieces[at(a)].containers.size() < pieces[at(b)].containers.size(); });
+  for (Index i : by_depth) {
+    Piece& p = pieces[at(i)];
+    if (p.parent == kNone) continue;
+    const Piece& parent = pieces[at(p.parent)];
+    p.kind = parent.kind == Kind::object ? Kind::cavity : Kind::object;
+    p.why = (p.kind == Kind::cavity ? "inside the object piece " : "inside the ") +
+            std::string(p.kind == Kind::cavity ? "" : parent.kind == Kind::cavity ? "cavity piece " : "enclosure piece ") +
+            std::to_string(p.parent);
+  }
+
+  // 5. Stored clockwise from the front: an open piece reversed (its counter-clockwise side is the
+  // front); a closed piece counter-clockwise from outside when its front is inward (enclosure,
+  // cavity), from inside when outward (object).
+  for (Index i : closed) {
+    Piece& p = pieces[at(i)];
+    const bool front_outward = p.kind == Kind::object;
+    p.against_file = front_outward != p.file_front_outward;
+    // The triangles run counter-clockwise seen from the file's front; stored clockwise from the
+    // chosen front, they are reversed when the two agree.
+    if (!p.against_file)
       for (Index t : p.triangles) std::swap(mesh.triangles[at(t)][1], mesh.triangles[at(t)][2]);
   }
   for (const Piece& p : pieces)
     if (!p.closed)
       for (Index t : p.triangles) std::swap(mesh.triangles[at(t)][1], mesh.triangles[at(t)][2]);
 
+  out.in_closed_piece.assign(nt, 0);
+  out.against_file = 0;
+  for (const Piece& p : pieces) {
+    out.against_file += p.against_file;
+    if (p.closed)
+      for (Index t : p.triangles) out.in_closed_piece[at(t)] = 1;
+  }
   out.pieces = pieces.size();
   out.closed_pieces = closed.size();
   out.flipped = 0;

@@ -1,12 +1,16 @@
 // Validation of a general scene (scene_validation.hpp): the convex path of the paper first
 // (validate_closed_convex, V = 1), taken unchanged when it succeeds; otherwise, when it failed for
 // the shape only, the general rules in order: well formed, finite, non-degenerate (as the convex
-// path), no two faces crossing (face_crossing.cpp), every piece orientable, and the front sides
-// (piece_orientation.cpp).
+// path), T-junctions split (t_junctions.cpp), no two faces crossing (face_crossing.cpp), every piece
+// orientable and the front sides (piece_orientation.cpp), faces in contact cut and their covered
+// parts removed (contact_removal.cpp).
+#include "contact_removal.hpp"
+#include "t_junctions.hpp"
 #include "validation_internal.hpp"
 
 #include <panelrad/geometry/builtin_scenes.hpp>
 #include <panelrad/geometry/mesh_io.hpp>
+#include <panelrad/geometry/occluders.hpp>
 #include <panelrad/geometry/scene_validation.hpp>
 
 #include <utility>
@@ -30,6 +34,28 @@ SceneValidationReport rejected(SceneValidationReport report, const Failure& fail
   report.rule = failure.rule;
   report.message = failure.rule + ": " + failure.message;
   return report;
+}
+
+/// The faces in contact, one note per pair up to kMaxContactNotes, then one summary.
+constexpr std::size_t kMaxContactNotes = 8;
+
+void note_contacts(const TriangleMesh& mesh, SceneValidationReport& report) {
+  const Describe d{mesh};
+  const auto& c = report.contacts;
+  if (c.empty()) return;
+  std::size_t listed = 0;
+  for (const SceneContact& t : c) {
+    if (listed++ == kMaxContactNotes) break;
+    report.notes.push_back(d.faces(t.face_a, t.face_b) +
+                           " touch with their front sides against each other: the parts inside solid matter are "
+                           "not surfaces of the scene and were removed (area " + num(t.removed_a) + " of face " +
+                           std::to_string(t.face_a) + ", " + num(t.removed_b) + " of face " +
+                           std::to_string(t.face_b) + ", from all their contacts)");
+  }
+  if (c.size() > kMaxContactNotes)
+    report.notes.push_back("and " + std::to_string(c.size() - kMaxContactNotes) + " more pairs of faces in contact");
+  report.notes.push_back("contacts: " + std::to_string(c.size()) + (c.size() == 1 ? " pair" : " pairs") +
+                         " of faces touch; area removed in all " + num(report.contact_area_removed));
 }
 
 }  // namespace
@@ -68,22 +94,86 @@ SceneValidationReport validate_scene(TriangleMesh& mesh) {
   // convex path already (it checks them before any rule of shape); checked again here so that
   // this path does not depend on that order.
   if (auto f = check_well_formed(mesh)) return rejected(std::move(report), *f);
-  const std::vector<Point> pts = exact_points(mesh);
-  if (auto f = check_measurable(mesh, pts)) return rejected(std::move(report), *f);
-  if (auto f = check_no_crossing(mesh, pts)) return rejected(std::move(report), *f);
-  const std::vector<Tri> input_triangles = mesh.triangles;
-  ScenePieces pieces;
-  if (auto f = orient_scene_pieces(mesh, pieces)) {
-    mesh.triangles = input_triangles;  // unchanged when refused
+  if (auto f = check_measurable(mesh, exact_points(mesh))) return rejected(std::move(report), *f);
+  const TriangleMesh input = mesh;  // unchanged when refused
+  // An edge that ends on the middle of another edge joins nothing by vertex index: the vertex is
+  // inserted into that edge, so that a surface that closes geometrically is closed. A closed
+  // convex surface may then appear: the convex path again.
+  report.t_junctions_split = split_t_junctions(mesh);
+  if (report.t_junctions_split > 0) {
+    const std::string split_note = std::to_string(report.t_junctions_split) +
+                                   (report.t_junctions_split == 1 ? " vertex lay" : " vertices lay") +
+                                   " inside an edge of another triangle (a T-junction); the edges were split there";
+    TriangleMesh split = mesh;
+    const ValidationReport again = validate_closed_convex(split);
+    if (again.valid) {
+      mesh = std::move(split);
+      report.valid = true;
+      report.shape = SceneShape::convex;
+      report.convex_report = again;
+      report.notes.push_back(split_note);
+      report.notes.insert(report.notes.end(), again.notes.begin(), again.notes.end());
+      report.pieces = 1;
+      report.closed_pieces = 1;
+      report.flipped_faces = again.flipped_faces;
+      return report;
+    }
+    report.notes.push_back(split_note);
+  }
+  std::vector<Overlap> overlaps;
+  if (auto f = check_no_crossing(mesh, exact_points(mesh), &overlaps)) {
+    mesh = input;
     return rejected(std::move(report), *f);
+  }
+  ScenePieces pieces;
+  ContactReport contacts;
+  if (!remove_shared_contact_faces(mesh, overlaps, pieces, contacts))
+    if (auto f = orient_scene_pieces(mesh, pieces)) {
+      mesh = input;
+      return rejected(std::move(report), *f);
+    }
+  // Faces facing each other closer than the visibility can resolve are in contact for it: the
+  // resolution is four times the shadow tests' margin, so that any gap beyond it is seen.
+  const double resolution = 4 * visibility_margin(mesh);
+  const std::vector<Overlap> across_gap = faces_across_a_gap(mesh, resolution);
+  close_gaps(mesh, across_gap);
+  overlaps.insert(overlaps.end(), across_gap.begin(), across_gap.end());
+  if (auto f = remove_contacts(mesh, overlaps, pieces.in_closed_piece, resolution, contacts)) {
+    mesh = input;
+    return rejected(std::move(report), *f);
+  }
+  if (!contacts.pairs.empty()) {
+    // What the contacts left: something to see, and new corners (rounded once) that still span
+    // triangles of positive area.
+    std::optional<Failure> f;
+    if (mesh.triangles.empty())
+      f = Failure{"non-empty", "every face lies against a face of a solid, so nothing of the scene is left to see"};
+    else
+      f = check_measurable(mesh, exact_points(mesh));
+    if (f) {
+      mesh = input;
+      f->message += " (after the parts of faces in contact were removed)";
+      return rejected(std::move(report), *f);
+    }
   }
   report.valid = true;
   report.shape = SceneShape::general;
   report.pieces = pieces.pieces;
   report.closed_pieces = pieces.closed_pieces;
   report.flipped_faces = pieces.flipped;
-  report.notes.push_back("not one closed convex surface (" + cr.message + "): the visibility V(P, Q) is computed");
+  report.pieces_against_file = pieces.against_file;
+  report.notes.insert(report.notes.begin(),
+                      "not one closed convex surface (" + cr.message + "): the visibility V(P, Q) is computed");
   for (std::string& n : pieces.notes) report.notes.push_back(std::move(n));
+  report.contact_area_removed = contacts.area_removed();
+  for (const ContactReport::Touch& t : contacts.touching())
+    report.contacts.push_back({t.face_a, t.face_b, t.removed_a, t.removed_b});
+  note_contacts(mesh, report);
+  if (contacts.across_gap > 0)
+    report.notes.push_back(std::to_string(contacts.across_gap) +
+                           " pairs of triangles face each other across a gap below the visibility's resolution (" +
+                           sci(resolution) + ", four times its margin): taken as in contact, the gap closed by "
+                           "moving corners onto the other face's plane");
   return report;
 }
 

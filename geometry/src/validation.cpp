@@ -42,20 +42,30 @@ std::optional<Failure> orient_outward(TriangleMesh& mesh, const std::array<Index
 void note_flipped_faces(const TriangleMesh& mesh, const std::vector<Tri>& input_triangles,
                         ValidationReport& report) {
   const Sz nt = mesh.triangles.size();
-  Sz flipped = 0;
-  std::vector<char> facet_flipped(at(mesh.num_facets), 0);
-  for (Sz t = 0; t < nt; ++t)
-    if (mesh.triangles[t] != input_triangles[t]) {
-      ++flipped;
-      facet_flipped[at(mesh.facet_of_triangle[t])] = 1;
-    }
+  std::vector<char> flipped_triangle(nt, 0);
+  for (Sz t = 0; t < nt; ++t) flipped_triangle[t] = mesh.triangles[t] != input_triangles[t];
+  const Sz flipped = static_cast<Sz>(std::count(flipped_triangle.begin(), flipped_triangle.end(), 1));
   report.flipped_faces = flipped;
-  if (flipped == nt)
-    report.notes.push_back("all " + std::to_string(nt) + " triangles were oriented inward; flipped them to face outward");
-  else if (flipped > 0)
-    report.notes.push_back("re-oriented " + std::to_string(flipped) + " of " + std::to_string(nt) + " triangles (" +
-                           std::to_string(std::count(facet_flipped.begin(), facet_flipped.end(), 1)) +
-                           " input faces) to a consistent outward orientation");
+  if (flipped == 0) return;  // stored as input: counter-clockwise from outside
+  // Stored counter-clockwise from outside, the front side (inner normal n) inward: the file put
+  // the front inside where it ran its triangles the other way (most of them decide).
+  const bool file_front_inward = 2 * flipped > nt;
+  const std::string front = "the closed convex surface is " + front_side_words(FrontSide::enclosure, !file_front_inward);
+  if (flipped == nt) {
+    report.notes.push_back(front);
+    return;
+  }
+  // The minority: triangles that ran against most of the others, and their input faces.
+  std::vector<char> facet_against(at(mesh.num_facets), 0);
+  Sz against = 0;
+  for (Sz t = 0; t < nt; ++t)
+    if (static_cast<bool>(flipped_triangle[t]) != file_front_inward) {
+      ++against;
+      facet_against[at(mesh.facet_of_triangle[t])] = 1;
+    }
+  report.notes.push_back("re-oriented " + std::to_string(against) + " of " + std::to_string(nt) + " triangles (" +
+                         std::to_string(std::count(facet_against.begin(), facet_against.end(), 1)) +
+                         " input faces) to agree with the others; " + front);
 }
 
 /// Rule 6: convexity, exactly; when the mesh is not exactly convex, steps 1-3 of validation.hpp.

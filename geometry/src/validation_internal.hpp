@@ -27,6 +27,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace panelrad::geometry::validation_detail {
@@ -55,6 +56,10 @@ struct Describe {
   std::string point(Index v) const;
   std::string vertex(Index v) const;
   std::string triangle(Index t) const;
+  /// "input face F (line L)", the line when the mesh was read from a file.
+  std::string face(Index f) const;
+  /// "input faces F (line L) and G (line M)".
+  std::string faces(Index f, Index g) const;
 };
 
 /// A broken rule and the message naming where.
@@ -165,13 +170,36 @@ std::optional<Failure> accept_within_rounding(const TriangleMesh& mesh, const st
 
 /// Rule "crossing" of validate_scene: no two triangles have a point interior to both (a transversal
 /// cut, or a coplanar overlap of positive area); touching along edges or at points is allowed.
-std::optional<Failure> check_no_crossing(const TriangleMesh& mesh, const std::vector<Point>& pts);
+/// Two triangles of different input faces overlapping in one plane with positive area.
+struct Overlap {
+  Index i = kNone, j = kNone;  ///< the triangles, i < j
+  Vec3 point;                  ///< a point interior to both
+  bool across_gap = false;     ///< not coplanar: across a gap below the visibility's resolution
+};
+/// With `overlaps`, a coplanar overlap of positive area between triangles of two input faces is
+/// listed there instead of refused (faces in contact, contact_removal.hpp).
+std::optional<Failure> check_no_crossing(const TriangleMesh& mesh, const std::vector<Point>& pts,
+                                         std::vector<Overlap>* overlaps = nullptr);
+
+/// Which side of a piece is its front (the side that emits, reflects and sees: the paper's inner
+/// normal n), in the words every report uses, on the convex path and the general one alike.
+enum class FrontSide {
+  open,       ///< an open surface: the side from which its faces run counter-clockwise
+  enclosure,  ///< a closed surface seen from inside: front side inward
+  object,     ///< a closed surface seen from outside: front side outward
+  cavity,     ///< a closed surface inside an object: front side inward
+};
+/// "an enclosure, front side inward, as the file winds it" or "..., against the file's winding
+/// (its faces run counter-clockwise seen from outside)".
+std::string front_side_words(FrontSide side, bool against_file);
 
 /// What orient_scene_pieces decided.
 struct ScenePieces {
   Sz pieces = 0;
   Sz closed_pieces = 0;
   Sz flipped = 0;                  // triangles flipped to agree with most of their piece's area
+  Sz against_file = 0;             // closed pieces whose front side is the back of the file's winding
+  std::vector<char> in_closed_piece;  // per triangle: its piece is closed
   std::vector<std::string> notes;  // one per piece, or a summary of many
 };
 

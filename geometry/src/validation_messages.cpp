@@ -1,5 +1,6 @@
 // How validate_closed_convex names what it refuses: vertices and triangles with their indices and
-// coordinates (shortest round-trip decimals, so that a reader can find them in the file), lengths
+// coordinates (shortest round-trip decimals, so that a reader can find them in the file), the input
+// face of a triangle as the mesh reader names it ("input face F (line L)", F counted from 0), lengths
 // in scientific notation.
 #include "validation_internal.hpp"
 
@@ -37,9 +38,29 @@ std::string Describe::point(Index v) const {
 
 std::string Describe::vertex(Index v) const { return "vertex " + std::to_string(v) + " " + point(v); }
 
+namespace {
+
+/// "input face F (line L)": F the 0-based facet id, L its line in the file when the mesh was read
+/// from one (facet_line has an entry per facet), as the mesh reader names faces.
+std::string input_face(const TriangleMesh& mesh, Index f) {
+  std::string s = "input face " + std::to_string(f);
+  if (f >= 0 && mesh.facet_line.size() == at(mesh.num_facets) && at(f) < mesh.facet_line.size())
+    s.append(" (line ").append(std::to_string(mesh.facet_line[at(f)])).append(")");
+  return s;
+}
+
+}  // namespace
+
+std::string Describe::face(Index f) const { return input_face(mesh, f); }
+
+std::string Describe::faces(Index f, Index g) const {
+  const std::string second = input_face(mesh, g);
+  return "input faces " + input_face(mesh, f).substr(11) + " and " + second.substr(11);  // past "input face "
+}
+
 std::string Describe::triangle(Index t) const {
   const Tri& tr = mesh.triangles[at(t)];
-  return "triangle " + std::to_string(t) + " (input face " + std::to_string(mesh.facet_of_triangle[at(t)]) +
+  return "triangle " + std::to_string(t) + " (" + input_face(mesh, mesh.facet_of_triangle[at(t)]) +
          "; vertices " + std::to_string(tr[0]) + " " + point(tr[0]) + ", " + std::to_string(tr[1]) + " " +
          point(tr[1]) + ", " + std::to_string(tr[2]) + " " + point(tr[2]) + ")";
 }

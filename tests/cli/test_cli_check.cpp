@@ -67,7 +67,7 @@ TEST(CliCheck, GeneralScenesAreValidAndCrossingFacesAreNot) {
   EXPECT_CONTAINS(open.output, "valid: general scene (1 piece, 0 closed)");
   const CliRun cross = run("check " + std::string(PANELRAD_SOURCE_DIR) + "/tests/data/meshes/crossing_faces.off");
   EXPECT_EQ(cross.status, 1) << cross.output;
-  EXPECT_CONTAINS(cross.output, "invalid: crossing: input faces 0 and 1 cross at (0.5, ");
+  EXPECT_CONTAINS(cross.output, "invalid: crossing: input faces 0 (line 14) and 1 (line 15) cross at (0.5, ");
 }
 
 TEST(CliCheck, InvalidMeshesExitOne) {

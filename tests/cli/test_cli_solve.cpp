@@ -186,7 +186,7 @@ TEST_F(CliSolve, InvalidScenesAreRefusedNamingFileAndPlace) {
   CliRun r = run("solve " + path("crossing.off") + " --out " + path("x"));
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_CONTAINS(r.output, "crossing.off");
-  EXPECT_CONTAINS(r.output, "crossing: input faces 0 and 1 cross at (0.5, ");
+  EXPECT_CONTAINS(r.output, "crossing: input faces 0 (line 14) and 1 (line 15) cross at (0.5, ");
   // rho >= 1, rho < 0 and NaN in the MTL: named with the MTL file and line.
   const std::vector<std::string> mats = {"a", "a", "a", "a", "a", "bad"};
   write_cube_obj("cube.mtl", mats);

@@ -5,6 +5,7 @@
 #include <panelrad/geometry/cluster_tree.hpp>
 #include <panelrad/geometry/planar_facets.hpp>
 #include <panelrad/geometry/scene_validation.hpp>
+#include <panelrad/geometry/validation.hpp>
 
 #include <gtest/gtest.h>
 
@@ -110,6 +111,44 @@ TEST(FacetPlanes, CornellBoxLightInTheCeilingPlane) {
       EXPECT_DOUBLE_EQ(y_of(g), y_of(7));
     }
   EXPECT_GT(same_height, 0u);
+}
+
+// Faces of opposite orientation across a positive gap are never in one plane, however small the
+// gap relative to the rounding of the input; exactly coplanar ones are, whichever way they face.
+// Same-facing faces within the rounding share a plane only with PlaneGrouping::within_rounding.
+TEST(FacetPlanes, OppositeFacesAcrossAGapAreNeverOnePlane) {
+  for (const double offset : {0.0, 1e8})
+    for (const double gap : {1e-15, 1e-12, 1e-9, 1e-6, 1e-3}) {
+      if (offset + gap == offset) continue;  // not representable at that magnitude
+      pg::TriangleMesh m;
+      add_facet(m, {offset, 0, 0}, {offset + 1, 0, 0}, {offset, 1, 0});              // z = 0, normal +z
+      add_facet(m, {offset, 0, gap}, {offset, 1, gap}, {offset + 1, 0, gap});        // z = gap, normal -z
+      add_facet(m, {offset + 2, 0, gap}, {offset + 3, 0, gap}, {offset + 2, 1, gap});  // z = gap, normal +z
+      add_facet(m, {offset + 5, 0, 0}, {offset + 5, 1, 0}, {offset + 6, 0, 0});      // z = 0, normal -z
+      for (const pg::PlaneGrouping grouping : {pg::PlaneGrouping::exact, pg::PlaneGrouping::within_rounding}) {
+        const std::vector<Index> plane = pg::facet_planes(m, grouping);
+        SCOPED_TRACE("offset " + std::to_string(offset) + " gap " + std::to_string(gap));
+        EXPECT_NE(plane[0], plane[1]);
+        EXPECT_NE(plane[3], plane[1]);
+        EXPECT_EQ(plane[0], plane[3]);  // exactly coplanar, facing the other way
+        // Facet 2 is exactly in facet 1's plane, and faces the way facet 0 does across the gap:
+        // exactly grouped with facet 1; within the rounding it may go with facet 0 instead.
+        if (grouping == pg::PlaneGrouping::exact) {
+          EXPECT_EQ(plane[1], plane[2]);
+          EXPECT_NE(plane[0], plane[2]);
+        }
+      }
+    }
+}
+
+// A flat closed box (1 x 1 x 1e-5, convex): its floor and ceiling face each other and stay apart.
+TEST(FacetPlanes, FlatBoxFloorAndCeilingStayApart) {
+  pg::TriangleMesh flat = pg::make_cube();
+  for (pg::Vec3& v : flat.vertices) v.z() *= 1e-5;
+  const pg::ValidationReport r = pg::validate_closed_convex(flat);
+  ASSERT_TRUE(r.valid) << r.message;
+  const std::vector<Index> plane = pg::facet_planes(flat);
+  EXPECT_EQ(std::set<Index>(plane.begin(), plane.end()).size(), 6u);
 }
 
 // Every cluster carries its root's plane; the roots of one facet share it.

@@ -10,6 +10,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -115,6 +116,12 @@ pg::Vec3 geometric_normal(const pg::TriangleMesh& m, std::size_t t) {
   return (m.vertices[tr[1]] - a).cross(m.vertices[tr[2]] - a).normalized();
 }
 pg::Vec3 front_normal(const pg::TriangleMesh& m, std::size_t t) { return -geometric_normal(m, t); }
+/// (b - a) x (c - a), twice the area in length.
+pg::Vec3 geometric_normal_raw(const pg::TriangleMesh& m, std::size_t t) {
+  const auto& tr = m.triangles[t];
+  const pg::Vec3& a = m.vertices[tr[0]];
+  return (m.vertices[tr[1]] - a).cross(m.vertices[tr[2]] - a);
+}
 
 bool in_box(const pg::Vec3& p, const pg::Vec3& lo, const pg::Vec3& hi) {
   return (p.array() > lo.array()).all() && (p.array() < hi.array()).all();
@@ -189,18 +196,18 @@ TEST(SceneValidation, ClosedRoomWithABoxInside) {
   ASSERT_EQ(r.notes.size(), 3u);
   EXPECT_CONTAINS(r.notes[0], "not one closed convex surface (connected: the surface has 2 separate pieces");
   EXPECT_CONTAINS(r.notes[0], "the visibility V(P, Q) is computed");
-  EXPECT_CONTAINS(r.notes[1], "piece 0 (12 triangles, closed): an enclosure");
-  EXPECT_CONTAINS(r.notes[1], "front side inward");
-  EXPECT_CONTAINS(r.notes[2], "piece 1 (12 triangles, closed): an object inside piece 0, front side outward");
+  EXPECT_CONTAINS(r.notes[1], "piece 0 (12 triangles, closed): an enclosure, front side inward, against the file's winding");
+  EXPECT_CONTAINS(r.notes[2], "piece 1 (12 triangles, closed): an object, front side outward, against the file's winding (its faces run counter-clockwise seen from inside) (inside the enclosure piece 0)");
   // The room's fronts point into its volume; the box's away from it, into the room's air.
   expect_front_into(b.mesh, 0, 12, [&](const pg::Vec3& p) { return in_box(p, rlo, rhi); }, "room");
   expect_front_into(b.mesh, 12, 24, [&](const pg::Vec3& p) { return !in_box(p, blo, bhi); }, "box");
-  // Nested: a box inside the box is an object inside piece 1.
+  // Nested: a box inside the box (an object) is a cavity of it, front side inward.
   b.box({1.2, 1.1, 0.7}, {1.4, 1.3, 0.9});
   r = pg::validate_scene(b.mesh);
   ASSERT_TRUE(r.valid) << r.message;
   ASSERT_EQ(r.notes.size(), 4u);
-  EXPECT_CONTAINS(r.notes[3], "piece 2 (12 triangles, closed): an object inside piece 1, front side outward");
+  EXPECT_CONTAINS(r.notes[3], "piece 2 (12 triangles, closed): a cavity, front side inward");
+  EXPECT_CONTAINS(r.notes[3], "inside the object piece 1");
 }
 
 TEST(SceneValidation, LShapedRoomIsOneClosedNonConvexPiece) {
@@ -235,7 +242,9 @@ TEST(SceneValidation, LShapedRoomIsOneClosedNonConvexPiece) {
   expect_front_into(b.mesh, 0, 20, in_l, "L room");
 }
 
-TEST(SceneValidation, TwoSeparateBoxesAreEnclosures) {
+TEST(SceneValidation, TwoSeparateBoxesAreObjectsSeenFromOutside) {
+  // Each box has the other outside it and nothing inside: two bodies in an open scene, whatever
+  // their winding (the second is wound inward, which the rule overrides and says so).
   SceneBuilder b;
   const pg::Vec3 alo(0, 0, 0), ahi(1, 1, 1), blo(2, 0, 0), bhi(3, 1, 1);
   b.box(alo, ahi);
@@ -244,11 +253,202 @@ TEST(SceneValidation, TwoSeparateBoxesAreEnclosures) {
   ASSERT_TRUE(r.valid) << r.message;
   EXPECT_EQ(r.pieces, 2u);
   EXPECT_EQ(r.closed_pieces, 2u);
+  EXPECT_EQ(r.pieces_against_file, 1u);
   ASSERT_EQ(r.notes.size(), 3u);
-  EXPECT_CONTAINS(r.notes[1], "an enclosure inside no other closed piece");
-  EXPECT_CONTAINS(r.notes[2], "an enclosure inside no other closed piece");
-  expect_front_into(b.mesh, 0, 12, [&](const pg::Vec3& p) { return in_box(p, alo, ahi); }, "first box");
-  expect_front_into(b.mesh, 12, 24, [&](const pg::Vec3& p) { return in_box(p, blo, bhi); }, "second box");
+  EXPECT_CONTAINS(r.notes[1], "piece 0 (12 triangles, closed): an object, front side outward, as the file winds it");
+  EXPECT_CONTAINS(r.notes[1], "other pieces lie outside it and none inside");
+  EXPECT_CONTAINS(r.notes[2], "an object, front side outward, against the file's winding");
+  expect_front_into(b.mesh, 0, 12, [&](const pg::Vec3& p) { return !in_box(p, alo, ahi); }, "first box");
+  expect_front_into(b.mesh, 12, 24, [&](const pg::Vec3& p) { return !in_box(p, blo, bhi); }, "second box");
+}
+
+TEST(SceneValidation, ClosedCubeUnderALampIsSeenFromOutsideWhateverItsWinding) {
+  for (const bool outward : {true, false}) {
+    SceneBuilder b;
+    const pg::Vec3 lo(0, 0, 0), hi(1, 1, 1);
+    b.box(lo, hi, outward);
+    b.quad({-1, -1, 3}, {3, 0, 0}, {0, 3, 0}, {0, 0, -1});  // the lamp, facing down
+    const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
+    ASSERT_TRUE(r.valid) << r.message;
+    EXPECT_EQ(r.pieces_against_file, outward ? 0u : 1u);
+    EXPECT_CONTAINS(r.notes[1], "an object, front side outward");
+    expect_front_into(b.mesh, 0, 12, [&](const pg::Vec3& p) { return !in_box(p, lo, hi); }, "cube");
+    for (std::size_t t = 12; t < 14; ++t) EXPECT_LT(front_normal(b.mesh, t).z(), 0.0) << "lamp";
+  }
+}
+
+TEST(SceneValidation, RoomHoldingEverythingIsAnEnclosureWhateverItsWinding) {
+  for (const bool outward : {true, false}) {
+    SceneBuilder b;
+    b.box({0, 0, 0}, {2, 1, 1}, outward);
+    b.box({3, 0, 0}, {4, 1, 1}, outward);  // and a second room beside it, inside a third
+    b.box({-1, -1, -1}, {5, 2, 2}, outward);
+    const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
+    ASSERT_TRUE(r.valid) << r.message;
+    // The outer box holds the other two: an enclosure; they are objects inside it.
+    expect_front_into(b.mesh, 24, 36, [&](const pg::Vec3& p) { return in_box(p, {-1, -1, -1}, {5, 2, 2}); }, "outer");
+    expect_front_into(b.mesh, 0, 12, [&](const pg::Vec3& p) { return !in_box(p, {0, 0, 0}, {2, 1, 1}); }, "inner");
+    EXPECT_CONTAINS(r.notes[3], "piece 2 (12 triangles, closed): an enclosure, front side inward");
+    EXPECT_CONTAINS(r.notes[3], "every other piece lies inside it");
+  }
+}
+
+TEST(SceneValidation, CavityInsideAnObjectInsideARoomAlternates) {
+  // Room (front inward), a thick shell (front outward), its closed cavity (front inward) and a
+  // ball in the cavity (front outward), each given with the wrong winding.
+  SceneBuilder b;
+  const pg::Vec3 rlo(0, 0, 0), rhi(4, 4, 4), slo(1, 1, 1), shi(3, 3, 3), clo(1.5, 1.5, 1.5), chi(2.5, 2.5, 2.5),
+      blo(1.8, 1.8, 1.8), bhi(2.2, 2.2, 2.2);
+  b.box(rlo, rhi, true);
+  b.box(slo, shi, false);
+  b.box(clo, chi, true);
+  b.box(blo, bhi, false);
+  const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
+  ASSERT_TRUE(r.valid) << r.message;
+  EXPECT_EQ(r.pieces_against_file, 4u);
+  expect_front_into(b.mesh, 0, 12, [&](const pg::Vec3& p) { return in_box(p, rlo, rhi); }, "room");
+  expect_front_into(b.mesh, 12, 24, [&](const pg::Vec3& p) { return !in_box(p, slo, shi); }, "shell");
+  expect_front_into(b.mesh, 24, 36, [&](const pg::Vec3& p) { return in_box(p, clo, chi); }, "cavity");
+  expect_front_into(b.mesh, 36, 48, [&](const pg::Vec3& p) { return !in_box(p, blo, bhi); }, "ball");
+  EXPECT_CONTAINS(r.notes[3], "piece 2 (12 triangles, closed): a cavity, front side inward");
+  EXPECT_CONTAINS(r.notes[3], "inside the object piece 1");
+  EXPECT_CONTAINS(r.notes[4], "an object, front side outward");
+  EXPECT_CONTAINS(r.notes[4], "inside the cavity piece 2");
+}
+
+TEST(SceneValidation, HollowObjectInAnOpenSceneFollowsTheFilesWinding) {
+  // A shell with a cavity and a lamp outside: pieces inside and outside the shell, so the file's
+  // winding decides, and the note says so.
+  for (const bool outward : {true, false}) {
+    SceneBuilder b;
+    const pg::Vec3 slo(1, 1, 1), shi(3, 3, 3), clo(1.5, 1.5, 1.5), chi(2.5, 2.5, 2.5);
+    b.box(slo, shi, outward);
+    b.box(clo, chi, !outward);
+    b.quad({0, 0, 5}, {4, 0, 0}, {0, 4, 0}, {0, 0, -1});
+    const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
+    ASSERT_TRUE(r.valid) << r.message;
+    EXPECT_CONTAINS(r.notes[1], "the file's winding decides");
+    EXPECT_EQ(r.pieces_against_file, 0u);
+    if (outward) {
+      expect_front_into(b.mesh, 0, 12, [&](const pg::Vec3& p) { return !in_box(p, slo, shi); }, "shell");
+      expect_front_into(b.mesh, 12, 24, [&](const pg::Vec3& p) { return in_box(p, clo, chi); }, "cavity");
+    } else {
+      expect_front_into(b.mesh, 0, 12, [&](const pg::Vec3& p) { return in_box(p, slo, shi); }, "shell");
+      expect_front_into(b.mesh, 12, 24, [&](const pg::Vec3& p) { return !in_box(p, clo, chi); }, "cavity");
+    }
+  }
+}
+
+TEST(SceneValidation, RoomWithATJunctionIsClosedAndItsBoxAnObject) {
+  // The unit room wound inward, its ceiling given as two halves: the walls y = 0 and y = 1 run
+  // whole along the top, so the halves' corners (0.5, 0, 1) and (0.5, 1, 1) lie inside those edges.
+  SceneBuilder b;
+  std::vector<pg::Index> v;
+  const auto at = [&](double x, double y, double z) {
+    for (std::size_t i = 0; i < b.mesh.vertices.size(); ++i)
+      if (b.mesh.vertices[i] == pg::Vec3(x, y, z)) return static_cast<pg::Index>(i);
+    return b.vertex({x, y, z});
+  };
+  const pg::Vec3 in(0.5, 0.5, 0.5);
+  const auto face = [&](std::vector<pg::Index> c) {
+    pg::Vec3 m = pg::Vec3::Zero();
+    for (pg::Index i : c) m += b.mesh.vertices[static_cast<std::size_t>(i)];
+    m /= static_cast<double>(c.size());
+    b.facing(std::move(c), in - m);
+  };
+  face({at(0, 0, 0), at(1, 0, 0), at(1, 1, 0), at(0, 1, 0)});
+  face({at(0, 0, 1), at(0.5, 0, 1), at(0.5, 1, 1), at(0, 1, 1)});
+  face({at(0.5, 0, 1), at(1, 0, 1), at(1, 1, 1), at(0.5, 1, 1)});
+  face({at(0, 0, 0), at(1, 0, 0), at(1, 0, 1), at(0, 0, 1)});
+  face({at(0, 1, 0), at(1, 1, 0), at(1, 1, 1), at(0, 1, 1)});
+  face({at(0, 0, 0), at(0, 1, 0), at(0, 1, 1), at(0, 0, 1)});
+  face({at(1, 0, 0), at(1, 1, 0), at(1, 1, 1), at(1, 0, 1)});
+  const std::size_t room_triangles = b.mesh.triangles.size();
+  const pg::Vec3 blo(0.3, 0.3, 0.2), bhi(0.6, 0.6, 0.5);
+  b.box(blo, bhi, false);
+  const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
+  ASSERT_TRUE(r.valid) << r.message;
+  EXPECT_EQ(r.t_junctions_split, 2u);
+  EXPECT_EQ(r.closed_pieces, 2u);
+  // The split walls have one more triangle each; the room's fronts inward, the box's outward.
+  ASSERT_EQ(b.mesh.triangles.size(), room_triangles + 2 + 12);
+  expect_front_into(b.mesh, 0, room_triangles + 2, [&](const pg::Vec3& p) { return in_box(p, {0, 0, 0}, {1, 1, 1}); }, "room");
+  expect_front_into(b.mesh, room_triangles + 2, b.mesh.triangles.size(), [&](const pg::Vec3& p) { return !in_box(p, blo, bhi); }, "box");
+}
+
+/// The total area of the triangles of facet f.
+double facet_area(const pg::TriangleMesh& m, pg::Index f) {
+  double a = 0;
+  for (std::size_t t = 0; t < m.triangles.size(); ++t)
+    if (m.facet_of_triangle[t] == f) a += 0.5 * geometric_normal_raw(m, t).norm();
+  return a;
+}
+
+TEST(SceneValidation, BoxRestingOnTheFloorLosesItsContactFaces) {
+  // The unit room with a box standing on its floor: the floor under the box and the box's bottom
+  // face are inside solid matter and removed; the rest stays with its front sides.
+  SceneBuilder b;
+  const std::vector<pg::Index> room = b.box({0, 0, 0}, {1, 1, 1}, false);
+  const pg::Vec3 blo(0.25, 0.375, 0), bhi(0.625, 0.75, 0.3);
+  const std::vector<pg::Index> box = b.box(blo, bhi, true);
+  const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
+  ASSERT_TRUE(r.valid) << r.message;
+  const double footprint = (bhi.x() - blo.x()) * (bhi.y() - blo.y());
+  ASSERT_EQ(r.contacts.size(), 1u);
+  EXPECT_EQ(r.contacts[0].face_a, room[4]);
+  EXPECT_EQ(r.contacts[0].face_b, box[4]);
+  EXPECT_NEAR(r.contacts[0].removed_a, footprint, 1e-15);
+  EXPECT_NEAR(r.contacts[0].removed_b, footprint, 1e-15);
+  EXPECT_NEAR(r.contact_area_removed, 2 * footprint, 1e-15);
+  EXPECT_NEAR(facet_area(b.mesh, room[4]), 1 - footprint, 1e-15);
+  EXPECT_EQ(facet_area(b.mesh, box[4]), 0.0);
+  bool noted = false;
+  for (const std::string& n : r.notes) noted = noted || n.find("touch with their front sides against each other") != std::string::npos;
+  EXPECT_TRUE(noted);
+  for (std::size_t t = 0; t < b.mesh.triangles.size(); ++t) {
+    const pg::Vec3 c = centroid(b.mesh, t);
+    if (b.mesh.facet_of_triangle[t] == room[4]) {
+      EXPECT_FALSE(c.x() > blo.x() && c.x() < bhi.x() && c.y() > blo.y() && c.y() < bhi.y()) << "floor under the box";
+      EXPECT_GT(front_normal(b.mesh, t).z(), 0.99);
+    }
+  }
+  // No vertex is left that no triangle uses.
+  std::vector<char> used(b.mesh.vertices.size(), 0);
+  for (const auto& tr : b.mesh.triangles)
+    for (pg::Index v : tr) used[static_cast<std::size_t>(v)] = 1;
+  EXPECT_EQ(std::count(used.begin(), used.end(), 0), 0);
+}
+
+TEST(SceneValidation, BoxesFaceToFaceLoseTheOverlapOnly) {
+  // Two boxes touching in the plane x = 0.4 over [0.3, 0.4] x [0.25, 0.4] (a partial overlap).
+  SceneBuilder b;
+  b.box({0, 0, 0}, {1, 1, 1}, false);
+  const std::vector<pg::Index> a = b.box({0.2, 0.2, 0.2}, {0.4, 0.4, 0.4});
+  const std::vector<pg::Index> c = b.box({0.4, 0.3, 0.25}, {0.6, 0.5, 0.45});
+  const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
+  ASSERT_TRUE(r.valid) << r.message;
+  ASSERT_EQ(r.contacts.size(), 1u);
+  const double overlap = 0.1 * 0.15;
+  EXPECT_NEAR(r.contacts[0].removed_a, overlap, 1e-15);
+  EXPECT_NEAR(r.contacts[0].removed_b, overlap, 1e-15);
+  EXPECT_NEAR(facet_area(b.mesh, a[1]), 0.04 - overlap, 1e-15);
+  EXPECT_NEAR(facet_area(b.mesh, c[0]), 0.04 - overlap, 1e-15);
+  // Each face keeps its front side: +x for the first box's face, -x for the second's.
+  for (std::size_t t = 0; t < b.mesh.triangles.size(); ++t) {
+    if (b.mesh.facet_of_triangle[t] == a[1]) EXPECT_GT(front_normal(b.mesh, t).x(), 0.99);
+    if (b.mesh.facet_of_triangle[t] == c[0]) EXPECT_LT(front_normal(b.mesh, t).x(), -0.99);
+  }
+}
+
+TEST(SceneValidation, FaceGivenTwiceIsRefusedByName) {
+  SceneBuilder b;
+  b.box({0, 0, 0}, {1, 1, 1}, false);
+  b.quad({0.2, 0.2, 0.5}, {0.2, 0, 0}, {0, 0.2, 0}, {0, 0, 1});
+  b.quad({0.2, 0.2, 0.5}, {0.2, 0, 0}, {0, 0.2, 0}, {0, 0, 1});
+  const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
+  ASSERT_FALSE(r.valid);
+  EXPECT_EQ(r.rule, "crossing");
+  EXPECT_CONTAINS(r.message, "input faces 6 and 7 overlap in one plane with the same front side");
 }
 
 TEST(SceneValidation, OpenRoomKeepsTheCounterClockwiseSideAsFront) {
@@ -312,17 +512,25 @@ TEST(SceneValidation, WallPiercingAFaceIsRefusedWithBothFacesAndAPoint) {
   EXPECT_EQ(b.mesh.triangles, input.triangles);  // unchanged when refused
 }
 
-TEST(SceneValidation, CoplanarOverlapIsACrossing) {
+TEST(SceneValidation, CoplanarOverlapOfTwoSheetsIsRefused) {
+  // Two open quads overlapping back to back: neither bounds matter, so neither covers the other.
   SceneBuilder b;
   b.quad({0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0, 0, 1});
-  b.quad({1, 1, 0}, {2, 0, 0}, {0, 2, 0}, {0, 0, -1});  // facing the other way: still overlapping
-  const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
+  b.quad({1, 1, 0}, {2, 0, 0}, {0, 2, 0}, {0, 0, -1});
+  pg::SceneValidationReport r = pg::validate_scene(b.mesh);
   ASSERT_FALSE(r.valid);
   EXPECT_EQ(r.rule, "crossing");
-  EXPECT_CONTAINS(r.message, "input faces 0 and 1 cross at (");
+  EXPECT_CONTAINS(r.message, "input faces 0 and 1 overlap in one plane back to back at (");
   const pg::Vec3 x = crossing_point(r.message);
   EXPECT_EQ(x.z(), 0.0);
   EXPECT_TRUE(x.x() > 1 && x.x() < 2 && x.y() > 1 && x.y() < 2) << r.message;  // inside both quads
+  // Facing the same way: the same surface twice.
+  SceneBuilder same;
+  same.quad({0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0, 0, 1});
+  same.quad({1, 1, 0}, {2, 0, 0}, {0, 2, 0}, {0, 0, 1});
+  r = pg::validate_scene(same.mesh);
+  ASSERT_FALSE(r.valid);
+  EXPECT_CONTAINS(r.message, "input faces 0 and 1 overlap in one plane with the same front side at (");
 }
 
 TEST(SceneValidation, CoplanarQuadsSharingAnEdgeWithSeparateVerticesTouch) {
@@ -334,7 +542,11 @@ TEST(SceneValidation, CoplanarQuadsSharingAnEdgeWithSeparateVerticesTouch) {
   b.quad({-1, 0.5, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1});
   const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
   ASSERT_TRUE(r.valid) << r.message;
-  EXPECT_EQ(r.pieces, 4u);
+  // The first quad's corner (0, 1, 0) lies inside the last one's edge and the last one's corner
+  // (0, 0.5, 0) inside the first one's: both edges are split there (T-junctions), the two quads
+  // then share the edge from (0, 0.5, 0) to (0, 1, 0) and are one piece.
+  EXPECT_EQ(r.t_junctions_split, 2u);
+  EXPECT_EQ(r.pieces, 3u);
   // A duplicate of the first triangle over the same vertices, reversed: a coplanar overlap.
   SceneBuilder d;
   d.quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1});
@@ -353,15 +565,15 @@ TEST(SceneValidation, SingleQuadIsAGeneralScene) {
   EXPECT_EQ(r.pieces, 1u);
   for (std::size_t t = 0; t < 2; ++t) EXPECT_EQ(geometric_normal(b.mesh, t), pg::Vec3(0, 0, -1));  // front +z
   // A closed flat surface (a triangle and its reverse over the same vertices) is refused by the
-  // convex path as enclosing no volume, then by the general rules as a coplanar overlap.
+  // convex path as enclosing no volume, and so by the general rules: a closed piece with no inside.
   SceneBuilder two;
   two.polygon({two.vertex({0, 0, 0}), two.vertex({1, 0, 0}), two.vertex({0, 1, 0})});
   two.polygon({0, 2, 1});
   const pg::SceneValidationReport f = pg::validate_scene(two.mesh);
   EXPECT_EQ(f.convex_report.rule, "non-degenerate");
   EXPECT_CONTAINS(f.convex_report.message, "all vertices are coplanar");
-  EXPECT_EQ(f.rule, "crossing");
-  EXPECT_CONTAINS(f.message, "input faces 0 and 1 cross at (");
+  EXPECT_EQ(f.rule, "non-degenerate");
+  EXPECT_CONTAINS(f.message, "encloses zero volume");
 }
 
 TEST(SceneValidation, MoebiusStripIsRefusedAsNotOrientable) {
@@ -417,9 +629,10 @@ TEST(SceneValidation, ManyPiecesAreSummarized) {
   const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
   ASSERT_TRUE(r.valid) << r.message;
   EXPECT_EQ(r.pieces, 11u);
-  ASSERT_EQ(r.notes.size(), 2u);
-  EXPECT_CONTAINS(r.notes[1], "11 pieces: 1 enclosures");
-  EXPECT_CONTAINS(r.notes[1], "0 objects");
+  ASSERT_EQ(r.notes.size(), 3u);
+  EXPECT_CONTAINS(r.notes[1], "11 pieces: 0 enclosures");
+  EXPECT_CONTAINS(r.notes[1], "1 objects");
+  EXPECT_CONTAINS(r.notes[2], "piece 10 (12 triangles, closed): an object, front side outward");
   EXPECT_CONTAINS(r.notes[1], "10 open");
 }
 
@@ -486,7 +699,7 @@ TEST(SceneValidation, LoadSceneMesh) {
     ADD_FAILURE() << "crossing faces accepted";
   } catch (const pg::MeshError& e) {
     const std::string msg = e.what();
-    EXPECT_CONTAINS(msg, "crossing_faces.off: invalid scene: crossing: input faces 0 and 1 cross at (");
+    EXPECT_CONTAINS(msg, "crossing_faces.off: invalid scene: crossing: input faces 0 (line 14) and 1 (line 15) cross at (");
     const pg::Vec3 x = crossing_point(msg);
     EXPECT_EQ(x.x(), 0.5);
     EXPECT_EQ(x.z(), 0.0);

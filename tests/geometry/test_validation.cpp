@@ -188,9 +188,9 @@ TEST(Validation, VerdictsOfPurposeMadeMeshes) {
 
 TEST(Validation, MessagesNameTheOffendingFaceOrVertex) {
   EXPECT_CONTAINS(validate(pg::read_mesh(kMeshes + "open_box.off")).message,
-                  "belongs to triangle 0 (input face 0; vertices 0 (0, 0, 0), 4 (0, 0, 1), 6 (0, 1, 1)) only");
+                  "belongs to triangle 0 (input face 0 (line 13); vertices 0 (0, 0, 0), 4 (0, 0, 1), 6 (0, 1, 1)) only");
   const pg::ValidationReport l = validate(pg::read_mesh(kMeshes + "l_block.off"));
-  EXPECT_CONTAINS(l.message, "vertex 4 (1, 2, 0) lies outside the plane of triangle 12 (input face 4;");
+  EXPECT_CONTAINS(l.message, "vertex 4 (1, 2, 0) lies outside the plane of triangle 12 (input face 4 (line 21);");
   EXPECT_CONTAINS(l.message, "by 1.00e+00");
   // The reflex edge x = 1 / y = 1 at (1,1): vertices at y = 2 lie 1 outside the plane y = 1, and the
   // diameter is |(2,0,0) - (0,2,1)| = 3.
@@ -247,7 +247,7 @@ TEST(Validation, InconsistentOrientationIsFixedWithTheRightFlipCount) {
   r = pg::validate_closed_convex(inward);
   ASSERT_TRUE(r.valid);
   EXPECT_EQ(r.flipped_faces, inward.triangles.size());
-  EXPECT_CONTAINS(r.notes[0], "oriented inward");
+  EXPECT_CONTAINS(r.notes[0], "front side inward, as the file winds it");
   expect_outward(inward);
 
   // A whole polygon face of a file written clockwise.

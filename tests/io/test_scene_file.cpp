@@ -252,7 +252,7 @@ TEST_F(SceneFile, CrossingFacesAreRejected) {
   write("crossing.json", R"({"default": {"rho": 0.5, "E": 1}})");
   const std::string msg = error_of(write("crossing.off", text));
   EXPECT_CONTAINS(msg, "crossing.off");
-  EXPECT_CONTAINS(msg, "crossing: input faces 0 and 1 cross at");
+  EXPECT_CONTAINS(msg, "crossing: input faces 0 (line 14) and 1 (line 15) cross at");
 }
 
 TEST_F(SceneFile, MeshSyntaxErrorNamesFileAndLine) {

@@ -24,7 +24,12 @@ Collocation::Collocation(const Scene& scene, int level, std::size_t channel) {
   Stopwatch clock;
   // The tree is refused (with its estimate) when it exceeds what this process may still
   // allocate: MemAvailable, ulimit -v and the cgroup limit (available_memory_bytes).
-  tree_ = std::make_shared<const geometry::ClusterTree>(scene.mesh(), level, available_memory_bytes());
+  // Supporting planes: within the rounding of the input only for a closed convex surface (accepted
+  // within rounding); a general scene's faces may face each other across any gap.
+  const geometry::PlaneGrouping planes = scene.shape() == geometry::SceneShape::convex
+                                             ? geometry::PlaneGrouping::within_rounding
+                                             : geometry::PlaneGrouping::exact;
+  tree_ = std::make_shared<const geometry::ClusterTree>(scene.mesh(), level, available_memory_bytes(), planes);
   tree_s_ = clock.seconds();
   clock.restart();
   const Index n = tree_->num_elements();

@@ -4,6 +4,7 @@
 // level l has children 4k .. 4k+3 on level l+1. Hence the elements (leaves, finest level L)
 // of cluster k of level l are the contiguous range [k * 4^(L-l), (k+1) * 4^(L-l)).
 #include <panelrad/geometry/mesh.hpp>
+#include <panelrad/geometry/planar_facets.hpp>
 #include <panelrad/geometry/uninitialized_vector.hpp>
 
 #include <array>
@@ -38,8 +39,10 @@ class ClusterTree {
   /// would overflow Index, or when the mesh is inconsistent (bad index, non-finite coordinate,
   /// zero-area triangle).
   ClusterTree(const TriangleMesh& validated_mesh, int finest_level);
-  /// As above, refusing trees whose estimate_bytes() exceeds memory_limit_bytes.
-  ClusterTree(const TriangleMesh& validated_mesh, int finest_level, std::size_t memory_limit_bytes);
+  /// As above, refusing trees whose estimate_bytes() exceeds memory_limit_bytes; `planes` says
+  /// which facets share a supporting plane (facet_planes): exact for a general scene.
+  ClusterTree(const TriangleMesh& validated_mesh, int finest_level, std::size_t memory_limit_bytes,
+              PlaneGrouping planes = PlaneGrouping::within_rounding);
 
   int finest_level() const { return finest_level_; }
   Index num_roots() const { return n0_; }                       ///< n0
@@ -47,7 +50,7 @@ class ClusterTree {
   Index level_size(int level) const { return n0_ << (2 * level); }
   Index num_facets() const { return num_facets_; }
   /// The supporting plane of cluster k of level l (of its root triangle): clusters of one plane
-  /// id lie in one plane, exactly or within the rounding of the input (facet_planes in
+  /// id lie in one plane, exactly or (convex surfaces) within the rounding of the input (facet_planes in
   /// planar_facets.hpp), whichever facet they are in; a point of that plane sees none of them.
   Index plane(int l, Index k) const { return root_plane_[static_cast<std::size_t>(k >> (2 * l))]; }
   Index num_planes() const { return num_planes_; }

@@ -44,6 +44,12 @@ namespace panelrad::geometry {
 /// Relative margin of the shadow tests (see the rounding policy above).
 inline constexpr double kShadowMargin = 1e-12;
 
+/// The distance margin of the shadow tests for `mesh` (the rounding policy above):
+/// kShadowMargin * (bounding-box diagonal of its triangles' corners) + 64 eps max|x|. Two faces
+/// facing each other closer than this cannot see each other through these tests, so validation
+/// (scene_validation.hpp) treats such faces as touching.
+double visibility_margin(const TriangleMesh& mesh);
+
 /// How much of tau a point P sees.
 enum class ShaftClass : std::uint8_t {
   full,     ///< tau lies strictly in front of P's plane, P strictly in front of tau, nothing meets the shaft

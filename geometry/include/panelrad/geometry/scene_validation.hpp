@@ -17,13 +17,21 @@ enum class SceneShape {
 };
 const char* to_string(SceneShape shape);  ///< "convex" | "general"
 
+/// Two input faces in contact (validate_scene): coincident, with opposite front sides; the area
+/// removed from each (by all its contacts) is the part inside solid matter.
+struct SceneContact {
+  Index face_a = 0, face_b = 0;         ///< input faces (facet ids), face_a < face_b
+  double removed_a = 0, removed_b = 0;  ///< area removed from face_a, face_b
+};
+
 /// Outcome of validate_scene().
 struct SceneValidationReport {
   bool valid = false;
   SceneShape shape = SceneShape::general;
   std::string rule;     ///< broken rule when invalid: "structure", "non-empty", "finite",
                         ///< "non-degenerate", "crossing" (two faces whose interiors meet),
-                        ///< "orientable" (a piece that has no consistent orientation); empty when valid
+                        ///< (or overlap in one plane with the same front side), "orientable" (a
+                        ///< piece that has no consistent orientation); empty when valid
   std::string message;  ///< one line: the rule, where (faces with their indices and a point), and
                         ///< what to do about it
   std::vector<std::string> notes;  ///< what was decided: why the convex path does not apply, each
@@ -32,6 +40,11 @@ struct SceneValidationReport {
                                    ///< general scene is not convex)
   std::size_t pieces = 0;          ///< connected pieces (triangles joined across edges they share)
   std::size_t closed_pieces = 0;   ///< of which closed (every edge in two of its triangles)
+  std::size_t pieces_against_file = 0;  ///< closed pieces whose front side is the back side of the
+                                        ///< file's winding (the rules below overrode it)
+  std::size_t t_junctions_split = 0;    ///< vertices inserted into edges they lay inside
+  std::vector<SceneContact> contacts;   ///< pairs of input faces in contact
+  double contact_area_removed = 0;      ///< area removed in all from faces in contact
   std::size_t flipped_faces = 0;   ///< triangles re-oriented relative to the input: on the convex
                                    ///< path validate_closed_convex's count; on the general path the
                                    ///< triangles flipped to agree with most of their piece's area
@@ -47,16 +60,32 @@ struct SceneValidationReport {
 ///    "connected", "convex", or a flat surface that encloses no volume), the general rules, checked
 ///    with CGAL exact predicates (filtered):
 ///    - well formed, non-empty, finite, no zero-area triangle (as the convex path);
+///    - T-junctions: a vertex lying strictly inside an edge of one triangle only is inserted into
+///      that edge, so that a surface that closes geometrically is closed (noted); when the result
+///      is one closed convex surface, the convex path takes it;
 ///    - no two faces cross: their intersection contains no point interior to both (a transversal
-///      cut, or coplanar overlap of positive area). Faces may touch along edges or at points,
-///      shared or not (a block standing on an uncut floor);
+///      cut). Faces may touch along edges or at points, shared or not (a block standing on an
+///      uncut floor);
 ///    - every connected piece (triangles joined across edges that exactly two triangles share) is
 ///      orientable; its triangles are made consistent with the orientation of most of its area.
-///    Front sides (the side that emits, reflects and sees: the paper's inner normal n):
+///    Front sides (the side that emits, reflects and sees: the paper's inner normal n), by nesting
+///    of the closed pieces (ray parity, exact predicates):
 ///    - an open piece: the side from which the input polygons run counter-clockwise (OBJ/OFF);
-///    - a closed piece inside no other closed piece: an enclosure, seen from inside;
-///    - a closed piece inside another: an object, seen from outside.
-///    Notes name each decision.
+///    - a closed piece inside no other closed piece: an enclosure (front inward) when nothing else
+///      of the scene lies outside it (a room, alone or with its contents); an object (front
+///      outward) when other pieces lie outside it and none inside (a body in an open scene); when
+///      pieces lie both inside and outside it, the file's winding decides (the counter-clockwise
+///      side is the front);
+///    - inside an enclosure or a cavity, an object; inside an object, a cavity (front inward); and
+///      so on down the nesting.
+///    The file's winding of a closed piece is overridden where these rules say so; notes name each
+///    piece, what it is, why, and whether that is as the file winds it.
+///    - faces in contact: two faces overlapping in one plane with opposite front sides (a box
+///      standing on a floor, two boxes face to face) are cut along the contact outline, and the
+///      part of each that lies against a face of a closed piece (so inside solid matter) is
+///      removed; notes and `contacts` say which faces touched and how much area was removed.
+///      Overlaps with the same front side (a face given twice, z-fighting) are refused as
+///      "crossing".
 /// On success every triangle is stored clockwise seen from its front side, i.e. its geometric normal
 /// (b - a) x (c - a) points to the back and the inner normal n is its negative: the convention of
 /// the convex path, where triangles run counter-clockwise seen from outside.

@@ -1,0 +1,307 @@
+// Exact oracles for the occluded radiosity equation (1) on general scenes (oracle_scenes.hpp),
+// each scene at the origin, 1e8 away and scaled by 1e-3 and 1e3:
+//  - closed scenes, with rho varying by facet in [0.2, 0.7) and E = c (1 - rho): the collocation
+//    solution is u = c. Rooms wound inward and outward; boxes that stand on the floor, hang from
+//    the ceiling, stand against a wall, touch each other on whole or partial faces, a pillar from
+//    floor to ceiling (faces in one plane with opposite front sides: the covered parts leave the
+//    scene); boxes facing the floor, the ceiling, a wall or each other across gaps from 1e-15 to
+//    1e-3 (the faces see each other); a hollow shell with its cavity (nested pieces: room inward,
+//    shell outward, cavity inward, whatever the input's winding); a flat room; L- and U-shaped
+//    rooms whose floor and ceiling are one non-convex polygon each, read from OBJ text, with and
+//    without collinear corners; a room whose wall ends on the middle of the floor's edge
+//    (T-junctions, closed once the edge is split);
+//  - open scenes under direct light: a point that sees, of everything lit, only the emitter
+//    (rho = 0 elsewhere) has u = rho F(P -> emitter), the closed-form parallel-rectangle factor of
+//    configuration_factors.hpp: a cube under a square lamp (both windings of the cube), and the
+//    Cornell box with closed blocks, raised 1 mm and standing on the floor (the tall block's top
+//    under the ceiling light);
+//  - a coplanar overlap of faces with the same front side (a rug on the floor facing up) stays
+//    refused as a crossing.
+//
+// The bound of the closed oracle. The error e = u_n - c 1 solves (I - K) e = c (K 1 - rho), so
+// ||e||_inf <= c ||K 1 - rho||_inf / (1 - ||K||_inf). Each row sum of H is 1 up to the error of
+// its entries: closed-form integrals over clipped polygons in double precision (relative error
+// ~1e-14 per form factor, a few pieces per element) and the slivers of relative size 1e-12 that
+// the shadow tests' margin drops (geometry/occluders.hpp); over n <= 1024 entries that is far below
+// 1e-10, so ||K 1 - rho||_inf <= 0.7e-10 and ||K||_inf <= 0.7 (1 + 1e-10): ||e|| / c <= 2.4e-10.
+// The iteration stops at the relative tolerance 1e-13, which adds at most 1e-13 / 0.3 of ||u||.
+// So max |u_i - c| / c < 1e-9 near the origin, at any scale.
+// Far from the origin the coordinates resolve the scene only to delta = 2^-52 max |x_k| / diameter
+// (coordinate_resolution: 1.3e-8 for the unit room 1e8 away). The corners of the visible pieces
+// (a face clipped by the shadow of an edge) are computed in those coordinates, each with an
+// absolute error of about delta D (D the scene's size); seen from P at distances down to about
+// D / 10 (the size of a level-1 element) that moves a factor by up to about 10 delta times the
+// factor, so the row sums hold to about 10 delta instead of 1e-10 and the bound becomes
+// 1e-9 + 10 delta / (1 - rho_max) (oracle_tolerance; 4.4e-7 there). The rounding of the
+// collocation points themselves does not enter: the row sum is 1 at every point of the enclosure.
+// Faces facing each other across a narrow gap h: the shadow tests decide and clip with heights
+// above planes computed from coordinates of magnitude M, each off by a few eps M, i.e. relatively
+// by eps M / h across the gap; the factors of what is seen through the gap move by that much
+// (measured on this build, 2026-12-06: 7.1e-9 for h = 1e-9 under a ceiling at M = 1, 4.0e-7 for
+// h = 8.4e-11 at M = 1.4, i.e. about 110 eps M / h), so 256 eps M / h is added to the bound
+// (oracle_tolerance). Gaps below four times the shadow tests' margin are taken as contact by
+// validation and add nothing.
+// A face seen from its back, a hidden face counted, a face not seen across a gap or a covered part
+// left in the scene changes a row sum by the factor of that face, far above these bounds at
+// these sizes (level 1, elements of side >= 1/8 of the room's).
+#include "configuration_factors.hpp"
+#include "occluded_scenes.hpp"
+#include "oracle_scenes.hpp"
+
+#include <panelrad/geometry/mesh_io.hpp>
+#include <panelrad/geometry/scene_validation.hpp>
+#include <panelrad/scene/scene.hpp>
+#include <panelrad/solve/radiosity_solver.hpp>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <sstream>
+#include <string>
+#include <tuple>
+#include <vector>
+
+namespace panelrad {
+namespace {
+
+using testing::BoxFront;
+using testing::Frame;
+using testing::TriangleMesh;
+using testing::Winding;
+
+constexpr double kC = 2.5;
+
+/// The closed oracle on `mesh`: accepted, solved, max |u - c| / c below the bound above.
+void expect_constant_solution(TriangleMesh mesh, bool expect_closed = false, const std::vector<double>& gaps = {}) {
+  const std::string what = mesh.source;
+  const testing::OracleRun run =
+      testing::run_constant_oracle(std::move(mesh), kC, -1, testing::oracle_rho, 1024, gaps);
+  ASSERT_TRUE(run.valid) << what << ": " << run.describe();
+  ASSERT_TRUE(run.solved) << what << ": " << run.describe();
+  EXPECT_LT(run.error, run.tolerance) << what << ": " << run.describe();
+  if (expect_closed) {
+    EXPECT_TRUE(run.closed) << what << ": " << run.describe();
+  }
+}
+
+const std::vector<Winding> kWindings = {Winding::natural, Winding::reversed, Winding::alternate};
+
+void expect_constant_solution(const testing::BoxScene& scene, const Frame& frame) {
+  for (const Winding w : kWindings)
+    expect_constant_solution(testing::wound(scene, w).mesh(frame), false, scene.placed_gaps(frame));
+}
+
+class OccludedOracle : public ::testing::TestWithParam<Frame> {};
+
+TEST_P(OccludedOracle, RoomAloneWoundInward) {
+  expect_constant_solution(testing::room_alone(BoxFront::inside).mesh(GetParam()));
+}
+
+TEST_P(OccludedOracle, RoomAloneWoundOutward) {
+  expect_constant_solution(testing::room_alone(BoxFront::outside).mesh(GetParam()));
+}
+
+TEST_P(OccludedOracle, BoxRestingOnTheFloor) { expect_constant_solution(testing::box_above_floor(0), GetParam()); }
+
+TEST_P(OccludedOracle, BoxHangingFromTheCeiling) {
+  expect_constant_solution(testing::box_below_ceiling(0), GetParam());
+}
+
+TEST_P(OccludedOracle, BoxAgainstAWall) { expect_constant_solution(testing::box_beside_wall(0), GetParam()); }
+
+TEST_P(OccludedOracle, TwoBoxesFaceToFace) { expect_constant_solution(testing::boxes_facing(0), GetParam()); }
+
+TEST_P(OccludedOracle, TwoBoxesWithPartlyOverlappingFaces) {
+  expect_constant_solution(testing::boxes_partly_touching(), GetParam());
+}
+
+TEST_P(OccludedOracle, PillarFromFloorToCeiling) { expect_constant_solution(testing::pillar(), GetParam()); }
+
+TEST_P(OccludedOracle, HollowShellWithItsCavity) { expect_constant_solution(testing::hollow_shell(), GetParam()); }
+
+TEST_P(OccludedOracle, FlatRoom) {
+  for (const Winding w : {Winding::natural, Winding::reversed})
+    expect_constant_solution(testing::wound(testing::flat_room(), w).mesh(GetParam()));
+}
+
+/// The prism room over `outline` read from OBJ text (floor and ceiling one polygon each), both
+/// windings.
+void expect_prism_room_constant(const std::string& name, const std::vector<std::array<double, 2>>& outline,
+                                const Frame& frame) {
+  for (const bool reversed : {false, true}) {
+    const std::string what = name + (reversed ? ", reversed winding, " : ", natural winding, ") + frame.describe();
+    const std::string text = testing::prism_room_obj(outline, frame, reversed);
+    std::istringstream in(text);
+    TriangleMesh mesh;
+    try {
+      mesh = geometry::read_obj(in, what);
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << what << ": the OBJ reader refused it: " << e.what() << "\n" << text;
+      continue;
+    }
+    mesh.source = what;
+    expect_constant_solution(std::move(mesh), true);
+  }
+}
+
+TEST_P(OccludedOracle, LShapedRoomAsOnePolygon) {
+  expect_prism_room_constant("L-shaped room, floor and ceiling one hexagon", testing::l_outline(), GetParam());
+}
+
+TEST_P(OccludedOracle, UShapedRoomAsOnePolygon) {
+  expect_prism_room_constant("U-shaped room, floor and ceiling one octagon", testing::u_outline(), GetParam());
+}
+
+TEST_P(OccludedOracle, LShapedRoomWithCollinearCorners) {
+  expect_prism_room_constant("L-shaped room with the collinear corner (1, 0)", testing::l_outline_collinear(),
+                             GetParam());
+}
+
+TEST_P(OccludedOracle, TJunctionRoomWithABox) {
+  for (const Winding w : {Winding::natural, Winding::reversed})
+    expect_constant_solution(testing::t_junction_room_with_box(GetParam(), w), true);
+}
+
+// The floor and a rug on it both face up: a coplanar overlap with the same front side, refused
+// as a crossing whichever way the room is wound (its floor faces up either way).
+TEST_P(OccludedOracle, CoplanarOverlapWithTheSameFrontIsRefused) {
+  for (const BoxFront room_front : {BoxFront::inside, BoxFront::outside}) {
+    TriangleMesh mesh = testing::room_with_rug(GetParam(), room_front);
+    const std::string what = mesh.source + ", room " + testing::to_string(room_front);
+    const geometry::SceneValidationReport report = geometry::validate_scene(mesh);
+    std::string notes;
+    for (const std::string& n : report.notes) notes += "\n  " + n;
+    EXPECT_FALSE(report.valid) << what << ": accepted, notes:" << notes;
+    EXPECT_EQ(report.rule, "crossing") << what << ": " << report.message;
+  }
+}
+
+/// Direct lighting: validates `mesh`, sets rho = rho_r on the facets in the plane x_axis =
+/// receiver_plane, E = 1 on the emitter's facets (those `emitter` selects) and rho = E = 0
+/// elsewhere, and checks every element of the receiver: u_i = rho_r F(P_i -> emitter), the
+/// emitter the rectangle `rect` (coordinates along axes u, v) in the plane x_axis = emitter_plane,
+/// parallel to the receiver and facing it, and wholly seen from it.
+///
+/// The collocation solution is exactly that: the receiver's elements are lit by the emitter only
+/// (every other element has rho = E = 0, so u = 0 there, and the receiver does not see itself:
+/// K^2 E = 0 on it), so u_i = rho_r (H E)_i and (H E)_i is the emitter's factor. Dense: each entry
+/// a closed form in double precision (relative error ~1e-14), F <= 1: 1e-12 absolute.
+void expect_direct_lighting(TriangleMesh mesh, int axis, double receiver_plane, double emitter_plane,
+                            const testing::AxisRectangle& rect,
+                            const std::function<bool(const Vec3&, const Vec3&, const Vec3&)>& emitter, int level) {
+  const std::string what = mesh.source;
+  const int u = axis == 0 ? 1 : 0, v = axis == 2 ? 1 : 2;  // the axes of the planes
+  const geometry::SceneValidationReport report = geometry::validate_scene(mesh);
+  ASSERT_TRUE(report.valid) << what << ": " << report.message;
+  const std::vector<bool> receiver = testing::facets_on_plane(mesh, axis, receiver_plane);
+  const std::vector<bool> lamp = testing::facets_where(mesh, emitter);
+  ASSERT_GT(std::count(lamp.begin(), lamp.end(), true), 0) << what << ": no emitter facet";
+  const double rho_r = 0.55;
+  std::vector<double> rho(receiver.size()), E(receiver.size());
+  for (std::size_t f = 0; f < rho.size(); ++f) {
+    rho[f] = receiver[f] ? rho_r : 0.0;
+    E[f] = lamp[f] ? 1.0 : 0.0;
+  }
+  Scene scene(std::move(mesh), {"value"}, report.shape);
+  scene.set_reflectivity(rho);
+  scene.set_emissivity(E);
+  RadiositySolverOptions o = testing::oracle_solver_options(level);
+  o.solver.tolerance = 1e-14;
+  const RadiositySolver solver(scene, o);
+  const ChannelSolve r = solver.solve(0);
+  ASSERT_TRUE(r.converged()) << what << ": " << r.message;
+  const Collocation& col = solver.collocation();
+  int seen = 0;
+  double worst = 0;
+  std::string where;
+  for (Index i = 0; i < col.size(); ++i) {
+    if (!receiver[static_cast<std::size_t>(col.facet(i))]) continue;
+    ++seen;
+    const Vec3& P = col.collocation_point(i);
+    const double truth = rho_r * testing::parallel_rectangle_factor(P[u], P[v], rect, emitter_plane - P[axis]);
+    const double d = std::abs(r.u[i] - truth);
+    if (!(d <= worst)) {
+      worst = d;
+      std::ostringstream s;
+      s.precision(17);
+      s << "element " << i << " of facet " << col.facet(i) << " at (" << P.x() << ", " << P.y() << ", " << P.z()
+        << "): u = " << r.u[i] << ", rho F = " << truth;
+      where = s.str();
+    }
+  }
+  ASSERT_GT(seen, 0) << what << ": no receiving element";
+  EXPECT_LT(worst, 1e-12) << what << ": " << where;
+}
+
+TEST_P(OccludedOracle, CubeUnderALamp) {
+  const Frame& frame = GetParam();
+  const testing::AxisRectangle lamp = {frame.place(0, testing::kLampLo), frame.place(0, testing::kLampHi),
+                                       frame.place(1, testing::kLampLo), frame.place(1, testing::kLampHi)};
+  const double lamp_z = frame.place(2, testing::kLampHeight);
+  for (const BoxFront front : {BoxFront::outside, BoxFront::inside}) {
+    expect_direct_lighting(
+        testing::cube_under_lamp(frame, front), 2, frame.place(2, testing::kCubeTop), lamp_z, lamp,
+        [&](const Vec3& a, const Vec3& b, const Vec3& c) { return a.z() == lamp_z && b.z() == lamp_z && c.z() == lamp_z; },
+        2);
+  }
+}
+
+void expect_cornell_tall_top(const Frame& frame, double lift) {
+  using namespace testing;
+  const AxisRectangle light = {frame.place(0, kCornellLightX0), frame.place(0, kCornellLightX1),
+                               frame.place(2, kCornellLightZ0), frame.place(2, kCornellLightZ1)};
+  const double ceiling = frame.place(1, kCornellCeiling);
+  auto in_light = [&](const Vec3& p) {
+    return p.y() == ceiling && p.x() >= light.x0 && p.x() <= light.x1 && p.z() >= light.y0 && p.z() <= light.y1;
+  };
+  expect_direct_lighting(
+      cornell_box_with_closed_blocks(frame, lift), 1, frame.place(1, kCornellTallTop + lift), ceiling, light,
+      [&](const Vec3& a, const Vec3& b, const Vec3& c) { return in_light(a) && in_light(b) && in_light(c); }, 1);
+}
+
+TEST_P(OccludedOracle, CornellBoxClosedBlocksRaisedOneMillimetre) { expect_cornell_tall_top(GetParam(), 1.0); }
+
+TEST_P(OccludedOracle, CornellBoxClosedBlocksStandingOnTheFloor) { expect_cornell_tall_top(GetParam(), 0.0); }
+
+std::string frame_name(const ::testing::TestParamInfo<Frame>& info) { return info.param.name; }
+
+INSTANTIATE_TEST_SUITE_P(Frames, OccludedOracle, ::testing::ValuesIn(testing::oracle_frames()), frame_name);
+
+// Faces facing each other across a gap see each other, from 1e-15 to 1e-3 of the room's size (at
+// 1e8 a gap is at least four spacings of the doubles there, 6e-8: oracle_scenes.hpp).
+class OccludedOracleGap : public ::testing::TestWithParam<std::tuple<double, Frame>> {
+ protected:
+  double gap() const { return std::get<0>(GetParam()); }
+  const Frame& frame() const { return std::get<1>(GetParam()); }
+};
+
+TEST_P(OccludedOracleGap, BoxAboveTheFloor) { expect_constant_solution(testing::box_above_floor(gap()), frame()); }
+
+TEST_P(OccludedOracleGap, BoxBelowTheCeiling) {
+  expect_constant_solution(testing::box_below_ceiling(gap()), frame());
+}
+
+TEST_P(OccludedOracleGap, BoxBesideAWall) { expect_constant_solution(testing::box_beside_wall(gap()), frame()); }
+
+TEST_P(OccludedOracleGap, TwoBoxesAcrossAGap) { expect_constant_solution(testing::boxes_facing(gap()), frame()); }
+
+std::string gap_frame_name(const ::testing::TestParamInfo<std::tuple<double, Frame>>& info) {
+  char s[32];
+  std::snprintf(s, sizeof s, "%.0e", std::get<0>(info.param));  // 1e-15
+  std::string name = std::string("gap") + s + "_" + std::get<1>(info.param).name;
+  for (char& ch : name)
+    if (ch == '-') ch = 'm';
+  return name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Gaps, OccludedOracleGap,
+                         ::testing::Combine(::testing::Values(1e-15, 1e-12, 1e-9, 1e-6, 1e-3),
+                                            ::testing::ValuesIn(testing::oracle_frames())),
+                         gap_frame_name);
+
+}  // namespace
+}  // namespace panelrad
