@@ -64,21 +64,22 @@ std::vector<Index> facet_planes(const TriangleMesh& mesh, PlaneGrouping grouping
     const Vec3& v = corner(t, k);
     return Point(v.x(), v.y(), v.z());
   };
-  // The geometric normals of triangles w and g point the same way (both nearly in one plane here,
-  // so the sign of their dot product is far from rounding; edges scaled as below).
-  const auto same_orientation = [&](Index w, Index g) {
-    const auto normal = [&](Index t) {
-      Vec3 u = corner(t, 1) - corner(t, 0), v = corner(t, 2) - corner(t, 0);
-      const double big = std::max(u.cwiseAbs().maxCoeff(), v.cwiseAbs().maxCoeff());
-      if (big > 0 && std::isfinite(big)) {
-        const double s = std::ldexp(1.0, -std::ilogb(big));
-        u *= s;
-        v *= s;
-      }
-      return Vec3(u.cross(v));
-    };
-    return normal(w).dot(normal(g)) > 0;
+  // The geometric normal (b - a) x (c - a) of triangle t with its edges scaled to O(1) first
+  // (exactly, by a power of two), so that the cross product neither overflows nor underflows at
+  // any coordinate magnitude validation accepts.
+  const auto scaled_normal = [&](Index t) {
+    Vec3 u = corner(t, 1) - corner(t, 0), v = corner(t, 2) - corner(t, 0);
+    const double big = std::max(u.cwiseAbs().maxCoeff(), v.cwiseAbs().maxCoeff());
+    if (big > 0 && std::isfinite(big)) {
+      const double s = std::ldexp(1.0, -std::ilogb(big));
+      u *= s;
+      v *= s;
+    }
+    return Vec3(u.cross(v));
   };
+  // The geometric normals of triangles w and g point the same way (both nearly in one plane here,
+  // so the sign of their dot product is far from rounding).
+  const auto same_orientation = [&](Index w, Index g) { return scaled_normal(w).dot(scaled_normal(g)) > 0; };
   // Facet g's triangle lies in the plane of the witness triangle w: each corner exactly coplanar
   // with w's corners, or, when both face the same way, within bound(w, v) of w's plane and
   // kMaxRoundingViolation of the diameter. Two faces of opposite orientation are joined only when
@@ -124,16 +125,7 @@ std::vector<Index> facet_planes(const TriangleMesh& mesh, PlaneGrouping grouping
       plane[f] = plane[at(g)];  // joined to a smaller facet through planar neighbours
       continue;
     }
-    // The edges scaled to O(1) first (exactly, by a power of two), so that the cross product
-    // neither overflows nor underflows at any coordinate magnitude validation accepts.
-    Vec3 u = corner(t, 1) - corner(t, 0), w = corner(t, 2) - corner(t, 0);
-    const double big_edge = std::max(u.cwiseAbs().maxCoeff(), w.cwiseAbs().maxCoeff());
-    if (big_edge > 0 && std::isfinite(big_edge)) {
-      const double s = std::ldexp(1.0, -std::ilogb(big_edge));
-      u *= s;
-      w *= s;
-    }
-    Vec3 n = u.cross(w);
+    Vec3 n = scaled_normal(t);
     const double len = n.norm();
     if (!(len > 0) || !std::isfinite(len)) throw MeshError("facet_planes: triangle " + std::to_string(t) + " has no normal");
     n /= len;

@@ -141,6 +141,15 @@ TEST(FacetPlanes, OppositeFacesAcrossAGapAreNeverOnePlane) {
     }
 }
 
+// The shipped Cornell box has its coplanar facets exactly coplanar: exact grouping (used for
+// general scenes) finds the planes that grouping within the rounding found, so its solution is
+// the same bit for bit.
+TEST(FacetPlanes, CornellBoxPlanesAreExact) {
+  pg::SceneShape shape;
+  const pg::TriangleMesh m = pg::load_scene_mesh(kScenes + "cornell_box.obj", shape);
+  EXPECT_EQ(pg::facet_planes(m, pg::PlaneGrouping::exact), pg::facet_planes(m, pg::PlaneGrouping::within_rounding));
+}
+
 // A flat closed box (1 x 1 x 1e-5, convex): its floor and ceiling face each other and stay apart.
 TEST(FacetPlanes, FlatBoxFloorAndCeilingStayApart) {
   pg::TriangleMesh flat = pg::make_cube();
