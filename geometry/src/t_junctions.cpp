@@ -94,8 +94,8 @@ std::vector<EdgeBox> covering_boxes(const TriangleMesh& mesh, const std::vector<
     const Vec3& b = mesh.vertices[at(corner(tr, slots[i].s + 1))];
     const int k_pieces = static_cast<int>(pieces_of((b - a).norm(), piece));
     // |fl(a + (b - a) t) - (a + (b - a) t)| <= 4 eps max(|a|, |b|) per coordinate for t in [0, 1].
-    const double slack =
-        k_pieces == 1 ? 0.0 : 8 * std::numeric_limits<double>::epsilon() * std::max(a.cwiseAbs().maxCoeff(), b.cwiseAbs().maxCoeff());
+    const double scale = std::max(a.cwiseAbs().maxCoeff(), b.cwiseAbs().maxCoeff());
+    const double slack = k_pieces == 1 ? 0.0 : 8 * std::numeric_limits<double>::epsilon() * scale;
     const Vec3 d = b - a;
     Vec3 from = a;
     for (int k = 1; k <= k_pieces; ++k) {
@@ -133,7 +133,9 @@ Sz split_round(TriangleMesh& mesh, const std::vector<Point>& p) {
     }
   std::vector<std::pair<std::uint32_t, Index>> candidates;  // (slot, vertex)
   CGAL::box_intersection_d(edge_boxes.begin(), edge_boxes.end(), vertex_boxes.begin(), vertex_boxes.end(),
-                           [&](const EdgeBox& e, const VertexBox& v) { candidates.emplace_back(e.info(), static_cast<Index>(v.info())); });
+                           [&](const EdgeBox& e, const VertexBox& v) {
+                             candidates.emplace_back(e.info(), static_cast<Index>(v.info()));
+                           });
   std::sort(candidates.begin(), candidates.end());
   candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
 

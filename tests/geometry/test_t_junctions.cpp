@@ -208,8 +208,8 @@ void expect_strip_split(const Strip& s, const std::vector<pg::Vec3>& vector_area
     std::array<pg::Index, 3> got = pieces[static_cast<std::size_t>(i)];
     std::rotate(got.begin(), std::find(got.begin(), got.end(), id(lo)), got.end());
     EXPECT_EQ(got, expected) << "piece " << i;
-    EXPECT_GT(normal(m, pieces[static_cast<std::size_t>(i)]).dot(vector_areas[static_cast<std::size_t>(s.big_facet)]), 0)
-        << "piece " << i;
+    const pg::Vec3& facet_normal = vector_areas[static_cast<std::size_t>(s.big_facet)];
+    EXPECT_GT(normal(m, pieces[static_cast<std::size_t>(i)]).dot(facet_normal), 0) << "piece " << i;
   }
 }
 

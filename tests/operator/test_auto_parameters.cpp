@@ -1,9 +1,12 @@
 // Automatic parameters: the rule of auto_parameters.hpp keeps the solution
-// within 5% of the discretization error, is deterministic, and refuses bad input.
+// within 5% of the discretization error, is deterministic, and refuses bad input; the dense matrix
+// where the fast method's far field is no cheaper (few elements per root, high Taylor degree), on
+// convex and occluded scenes, the fast method for the paper's cube.
 #include <panelrad/operator/auto_parameters.hpp>
 #include <panelrad/paper/cube_example.hpp>
 #include <panelrad/operator/collocation.hpp>
 #include <panelrad/geometry/builtin_scenes.hpp>
+#include <panelrad/geometry/scene_validation.hpp>
 #include <panelrad/geometry/validation.hpp>
 #include <panelrad/operator/operator_factory.hpp>
 #include <panelrad/scene/scene.hpp>
@@ -11,8 +14,12 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <utility>
+#include <vector>
 
 using namespace panelrad;
 
@@ -44,6 +51,63 @@ struct Outcome {
   double error = 0;            // max_k |u - u_auto|
 };
 
+/// The icosahedron on the unit sphere, each triangle split into four by its edge midpoints
+/// `subdivisions` times, the midpoints pushed onto the sphere: 20 4^S triangles, counter-clockwise
+/// seen from outside (`inward`: from inside), one facet each.
+geometry::TriangleMesh icosphere(int subdivisions, bool inward = false) {
+  const double t = (1 + std::sqrt(5.0)) / 2;
+  geometry::TriangleMesh m;
+  for (const Vec3& p : {Vec3(-1, t, 0), Vec3(1, t, 0), Vec3(-1, -t, 0), Vec3(1, -t, 0), Vec3(0, -1, t),
+                        Vec3(0, 1, t), Vec3(0, -1, -t), Vec3(0, 1, -t), Vec3(t, 0, -1), Vec3(t, 0, 1),
+                        Vec3(-t, 0, -1), Vec3(-t, 0, 1)})
+    m.vertices.push_back(p.normalized());
+  m.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                 {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                 {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  for (int k = 0; k < subdivisions; ++k) {
+    std::map<std::pair<Index, Index>, Index> midpoint;
+    const auto mid = [&](Index a, Index b) {
+      const auto [it, added] = midpoint.try_emplace(std::minmax(a, b), static_cast<Index>(m.vertices.size()));
+      if (added) {
+        const Vec3 p = m.vertices[static_cast<std::size_t>(a)] + m.vertices[static_cast<std::size_t>(b)];
+        m.vertices.push_back(p.normalized());
+      }
+      return it->second;
+    };
+    std::vector<std::array<Index, 3>> finer;
+    for (const auto& [a, b, c] : m.triangles) {
+      const Index ab = mid(a, b), bc = mid(b, c), ca = mid(c, a);
+      finer.insert(finer.end(), {{a, ab, ca}, {ab, b, bc}, {ca, bc, c}, {ab, bc, ca}});
+    }
+    m.triangles = std::move(finer);
+  }
+  if (inward)
+    for (auto& tr : m.triangles) std::swap(tr[1], tr[2]);
+  m.num_facets = static_cast<Index>(m.triangles.size());
+  for (Index f = 0; f < m.num_facets; ++f) m.facet_of_triangle.push_back(f);
+  m.source = "icosphere";
+  return m;
+}
+
+/// The closed cube [-c, c]^3, two triangles per face (each face one more facet), counter-clockwise
+/// seen from outside (`inward`: from inside), appended to `m`.
+void append_cube(geometry::TriangleMesh& m, double c, bool inward) {
+  const Index base = static_cast<Index>(m.vertices.size());
+  for (int k = 0; k < 8; ++k) m.vertices.emplace_back(k & 1 ? c : -c, k & 2 ? c : -c, k & 4 ? c : -c);
+  // Corners by bits (x, y, z); each face counter-clockwise seen from outside.
+  const int faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+  for (const auto& f : faces) {
+    std::array<Index, 3> t1 = {base + f[0], base + f[1], base + f[2]}, t2 = {base + f[0], base + f[2], base + f[3]};
+    if (inward) {
+      std::swap(t1[1], t1[2]);
+      std::swap(t2[1], t2[2]);
+    }
+    m.triangles.push_back(t1);
+    m.triangles.push_back(t2);
+    m.facet_of_triangle.insert(m.facet_of_triangle.end(), 2, m.num_facets++);
+  }
+}
+
 Outcome solve_both(const Scene& scene, int level, const OperatorOptions& chosen) {
   const Collocation col(scene, level);
   OperatorOptions reference;  // dense, exact
@@ -62,6 +126,9 @@ TEST(AutoParameters, ProblemSizeMatchesTheClusterTree) {
     const ProblemSize s = problem_size(cube.mesh(), level);
     const Collocation col(cube, level);
     EXPECT_EQ(s.n, col.size());
+    EXPECT_EQ(s.roots, static_cast<Index>(cube.mesh().triangles.size()));
+    // Seen from inside, each triangle faces the 10 of the other faces, not its coplanar twin.
+    EXPECT_DOUBLE_EQ(s.facing, 10.0 / 11.0);
     EXPECT_DOUBLE_EQ(s.mesh_size, col.tree().mesh_size());
     EXPECT_DOUBLE_EQ(s.diameter, col.tree().diameter());
     // The cube's equivalent level is its level (up to rounding of sqrt and log2).
@@ -111,6 +178,17 @@ TEST(AutoParameters, RefusesBadInput) {
   bad = ok;
   bad.mesh_size = 2 * bad.diameter;
   EXPECT_THROW(choose_parameters(bad), std::invalid_argument);
+  bad = ok;
+  bad.roots = 0;
+  EXPECT_THROW(choose_parameters(bad), std::invalid_argument);
+  bad.roots = bad.n + 1;
+  EXPECT_THROW(choose_parameters(bad), std::invalid_argument);
+  bad = ok;
+  bad.facing = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(choose_parameters(bad), std::invalid_argument);
+  bad.facing = 1.5;
+  EXPECT_THROW(choose_parameters(bad), std::invalid_argument);
+  EXPECT_THROW(choose_parameters(ok, 0.05, 0.5, Visibility::automatic), std::invalid_argument);
   EXPECT_THROW(problem_size(cube.mesh(), -1), std::invalid_argument);
   EXPECT_THROW(problem_size(geometry::TriangleMesh{}, 1), std::invalid_argument);
 }
@@ -205,4 +283,86 @@ TEST(AutoParameters, ConditioningAsksForTheTargetOfAFinerLevel) {
   // The cube at the sizes the README measures: n = 3072 and 12288 (0.4, 6), 49152 (0.4, 8).
   EXPECT_EQ(describe_parameters(choose_parameters(problem_size(cube.mesh(), 5))), "fast, exact near field, eta 0.4, M 6");
   EXPECT_EQ(describe_parameters(choose_parameters(problem_size(cube.mesh(), 6))), "fast, exact near field, eta 0.4, M 8");
+}
+
+// Dense or fast (auto_parameters.hpp, W): the work ratio of the fast method's far field to the
+// dense matrix, phi min(n, n0 + 20 / eta^2) T(M) / n; the dense matrix from W >= 11.
+TEST(AutoParameters, WorkRatioCountsRootsTaylorTermsAndFacingPairs) {
+  ProblemSize s;
+  s.n = 5120;
+  s.roots = 5120;
+  s.mesh_size = 0.05;
+  s.diameter = 2;
+  s.facing = 0.5;
+  // Level 0: every root a far pair at most, so W is the number of Taylor terms T(M) = 28 at M = 6.
+  EXPECT_DOUBLE_EQ(fast_to_dense_work(s, 0.4, 6, Visibility::unoccluded), 28.0);
+  // With V, only the facing half of the pairs.
+  EXPECT_DOUBLE_EQ(fast_to_dense_work(s, 0.4, 6, Visibility::occluded), 14.0);
+  // 16 elements per root: (320 + 20 / 0.16) / 5120 of the pairs, 66 terms at M = 10.
+  s.roots = 320;
+  EXPECT_DOUBLE_EQ(fast_to_dense_work(s, 0.4, 10, Visibility::unoccluded), (320 + 125.0) / 5120 * 66);
+  EXPECT_THROW(fast_to_dense_work(s, 0.4, 6, Visibility::automatic), std::invalid_argument);
+  EXPECT_THROW(fast_to_dense_work(s, 0, 6, Visibility::unoccluded), std::invalid_argument);
+  s.roots = 0;
+  EXPECT_THROW(fast_to_dense_work(s, 0.4, 6, Visibility::unoccluded), std::invalid_argument);
+}
+
+// A convex surface of many facets: at level 0 the fast method has no cluster larger than an
+// element, so the dense matrix is cheaper at any reflectivity (measured n = 5120: 2.3 s and 210 MB
+// against 3.5 s and 141 MB at M = 6, 13 s and 6.7 GB at M = 10); at level 1 from M = 8; from
+// level 2 on the fast method stays.
+TEST(AutoParameters, DenseWhereTheFarFieldIsNoCheaperThanTheMatrix) {
+  const auto choose = [](const geometry::TriangleMesh& mesh, int level, double rho_max, Visibility v) {
+    return choose_parameters(problem_size(mesh, level), 0.05, rho_max, v);
+  };
+  geometry::TriangleMesh ico2 = icosphere(2), ico3 = icosphere(3), ico4 = icosphere(4);
+  for (geometry::TriangleMesh* m : {&ico2, &ico3, &ico4}) ASSERT_TRUE(geometry::validate_closed_convex(*m).valid);
+  ASSERT_EQ(ico4.triangles.size(), 5120u);
+  for (double rho : {0.5, 0.8, 0.9}) {
+    SCOPED_TRACE("rho_max " + std::to_string(rho));
+    // n = 5120 at level 0: dense, with V or without (the roots of a convex surface face each other).
+    EXPECT_EQ(choose(ico4, 0, rho, Visibility::unoccluded).method, OperatorMethod::dense);
+    EXPECT_EQ(choose(ico4, 0, rho, Visibility::occluded).method, OperatorMethod::dense);
+    EXPECT_EQ(choose(ico3, 0, rho, Visibility::unoccluded).method, OperatorMethod::dense);
+    // 16 elements per root: fast.
+    EXPECT_EQ(choose(ico2, 2, rho, Visibility::unoccluded).method, OperatorMethod::fast);
+  }
+  // 4 elements per root: fast at M = 6 (rho 0.5, W 7.7), dense at M = 8 and 10 (W 12.4 and 18.1).
+  const OperatorOptions loose = choose(ico3, 1, 0.5, Visibility::unoccluded);
+  EXPECT_EQ(describe_parameters(loose), "fast, exact near field, eta 0.4, M 6");
+  EXPECT_LT(fast_to_dense_work(problem_size(ico3, 1), loose.eta, loose.degree, Visibility::unoccluded), 11);
+  EXPECT_EQ(choose(ico3, 1, 0.8, Visibility::unoccluded).method, OperatorMethod::dense);
+  EXPECT_EQ(choose(ico3, 1, 0.9, Visibility::unoccluded).method, OperatorMethod::dense);
+  // Below the crossover: n = 1280 at level 1 (W 9.7) stays fast.
+  EXPECT_EQ(choose(ico2, 1, 0.5, Visibility::unoccluded).method, OperatorMethod::fast);
+  // The paper's cube keeps the fast method above n = 768 at every reflectivity measured.
+  const Scene cube = make_paper_cube_scene();
+  for (int level = 4; level <= 8; ++level)
+    for (double rho : {0.5, 0.9}) {
+      EXPECT_EQ(choose(cube.mesh(), level, rho, Visibility::unoccluded).method, OperatorMethod::fast) << level;
+      EXPECT_EQ(choose(cube.mesh(), level, rho, Visibility::occluded).method, OperatorMethod::fast) << level;
+    }
+  EXPECT_THROW(choose(cube.mesh(), 4, 0.5, Visibility::automatic), std::invalid_argument);
+}
+
+// With V the facing fraction decides: 1280 sphere facets seen from outside inside a cube room see
+// none of each other (the fast method's coverings skip them as hidden: the fast method), the same
+// facets seen from inside, as the room around a small box, all see each other (the dense matrix).
+TEST(AutoParameters, OccludedScenesCountOnlyFacingRoots) {
+  geometry::TriangleMesh object_in_room = icosphere(3);
+  append_cube(object_in_room, 2, true);
+  geometry::TriangleMesh room_around_box = icosphere(3, true);
+  append_cube(room_around_box, 0.3, false);
+  for (geometry::TriangleMesh* m : {&object_in_room, &room_around_box}) {
+    const geometry::SceneValidationReport r = geometry::validate_scene(*m);
+    ASSERT_TRUE(r.valid) << r.message;
+    ASSERT_EQ(r.shape, geometry::SceneShape::general);
+  }
+  const ProblemSize object = problem_size(object_in_room, 0), room = problem_size(room_around_box, 0);
+  EXPECT_LT(object.facing, 0.01);
+  EXPECT_GT(room.facing, 0.95);
+  EXPECT_EQ(choose_parameters(object, 0.05, 0.5, Visibility::occluded).method, OperatorMethod::fast);
+  EXPECT_EQ(choose_parameters(room, 0.05, 0.5, Visibility::occluded).method, OperatorMethod::dense);
+  // Without V every pair would count: the dense matrix for both.
+  EXPECT_EQ(choose_parameters(object, 0.05, 0.5, Visibility::unoccluded).method, OperatorMethod::dense);
 }

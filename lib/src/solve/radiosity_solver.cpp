@@ -101,7 +101,7 @@ void RadiositySolver::setup() {
 void RadiositySolver::choose_parameters_and_plan() {
   const double rho_max = std::isnan(info_.conditioning_reflectivity) ? 0.0 : info_.conditioning_reflectivity;
   if (options_.method == OperatorMethod::automatic) {
-    info_.parameters = choose_parameters(problem_size(scene_.mesh(), info_.level), 0.05, rho_max);
+    info_.parameters = choose_parameters(problem_size(scene_.mesh(), info_.level), 0.05, rho_max, info_.visibility);
     info_.parameters.local = options_.manual.local;  // target clusters on or off, as asked
   } else {
     info_.parameters = options_.manual;

@@ -8,9 +8,11 @@
 //
 // Setup (the constructor), in this order:
 //   1. the level L: options.level, or the largest with n = n0 4^L <= options.max_elements;
-//   2. the operator's parameters: automatic: choose_parameters(problem_size, 0.05, rho_max), rho_max
-//      the largest reflectivity over all channels (the conditioning 1 / (1 - rho_max) of every
-//      channel's equation, (11)); dense or fast: options.manual;
+//   2. the operator's parameters: automatic: choose_parameters(problem_size, 0.05, rho_max,
+//      visibility), rho_max the largest reflectivity over all channels (the conditioning
+//      1 / (1 - rho_max) of every channel's equation, (11)), visibility the resolved line of sight
+//      (dense where the far field would be no cheaper than the matrix); dense or fast:
+//      options.manual;
 //   3. the memory plan (memory_plan.hpp): a level that cannot fit is refused (ResourceError,
 //      with the estimate) before anything is built;
 //   4. the collocation (22): the elements of the level-L refinement, rho and E of channel 0 at
