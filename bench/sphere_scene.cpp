@@ -17,6 +17,8 @@
 //          (writes PREFIX.off, PREFIX.json)
 // Example: sphere_scene --subdivisions 4 --out /tmp/ico5120 writes the 5,120-facet sphere; then
 //   panelrad solve /tmp/ico5120.off --levels 0 --method auto
+#include <panelrad/geometry/builtin_scenes.hpp>
+
 #include <Eigen/Core>
 
 #include <algorithm>
@@ -28,7 +30,6 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
-#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -43,43 +44,13 @@ struct Surface {
   std::vector<Face> faces;  // counter-clockwise seen from the front
 };
 
-/// The icosahedron on the unit sphere, counter-clockwise seen from outside.
-Surface icosahedron() {
-  const double t = (1 + std::sqrt(5.0)) / 2;
+/// geometry::make_icosphere as vertices and faces.
+Surface icosphere(int subdivisions) {
+  const panelrad::geometry::TriangleMesh m = panelrad::geometry::make_icosphere(subdivisions);
   Surface s;
-  for (const Vec3& p : {Vec3(-1, t, 0), Vec3(1, t, 0), Vec3(-1, -t, 0), Vec3(1, -t, 0), Vec3(0, -1, t),
-                        Vec3(0, 1, t), Vec3(0, -1, -t), Vec3(0, 1, -t), Vec3(t, 0, -1), Vec3(t, 0, 1),
-                        Vec3(-t, 0, -1), Vec3(-t, 0, 1)})
-    s.vertices.push_back(p.normalized());
-  s.faces = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-             {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-             {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  s.vertices = m.vertices;
+  for (const auto& t : m.triangles) s.faces.push_back({t[0], t[1], t[2]});
   return s;
-}
-
-/// Each triangle split into four by its edge midpoints, the midpoints pushed onto the unit sphere
-/// (one vertex per edge, shared by both triangles of the edge).
-Surface subdivide(const Surface& in) {
-  Surface out;
-  out.vertices = in.vertices;
-  std::map<std::pair<int, int>, int> midpoint;
-  const auto mid = [&](int a, int b) {
-    const auto key = std::minmax(a, b);
-    const auto [it, added] = midpoint.try_emplace(key, static_cast<int>(out.vertices.size()));
-    const Vec3& p = in.vertices[static_cast<std::size_t>(a)];
-    const Vec3& q = in.vertices[static_cast<std::size_t>(b)];
-    if (added) out.vertices.push_back((p + q).normalized());
-    return it->second;
-  };
-  for (const Face& f : in.faces) {
-    const int a = f[0], b = f[1], c = f[2];
-    const int ab = mid(a, b), bc = mid(b, c), ca = mid(c, a);
-    out.faces.push_back({a, ab, ca});
-    out.faces.push_back({ab, b, bc});
-    out.faces.push_back({ca, bc, c});
-    out.faces.push_back({ab, bc, ca});
-  }
-  return out;
 }
 
 int usage() {
@@ -113,8 +84,7 @@ int main(int argc, char** argv) {
   if (subdivisions < 0 || subdivisions > 6 || prefix.empty() || (room && enclosure) || !(rho >= 0 && rho < 1))
     return usage();
 
-  Surface s = icosahedron();
-  for (int k = 0; k < subdivisions; ++k) s = subdivide(s);
+  Surface s = icosphere(subdivisions);
   const std::size_t sphere_faces = s.faces.size();
   if (enclosure)  // the sphere as a room: counter-clockwise seen from inside
     for (Face& f : s.faces) std::reverse(f.begin(), f.end());

@@ -1,10 +1,14 @@
 // Built-in convex scenes, all oriented counter-clockwise seen from outside.
 #include <panelrad/geometry/builtin_scenes.hpp>
 
+#include <array>
 #include <charconv>
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <system_error>
+#include <utility>
+#include <vector>
 
 namespace panelrad::geometry {
 
@@ -97,6 +101,41 @@ TriangleMesh make_octahedron() {
       }
   mesh.num_facets = 8;
   return mesh;
+}
+
+TriangleMesh make_icosphere(int subdivisions) {
+  if (subdivisions < 0 || subdivisions > 8)
+    throw MeshError("icosphere: subdivisions must be in [0, 8], got " + std::to_string(subdivisions));
+  const double t = (1 + std::sqrt(5.0)) / 2;
+  TriangleMesh m;
+  m.source = "builtin:icosphere:" + std::to_string(subdivisions);
+  for (const Vec3& p : {Vec3(-1, t, 0), Vec3(1, t, 0), Vec3(-1, -t, 0), Vec3(1, -t, 0), Vec3(0, -1, t),
+                        Vec3(0, 1, t), Vec3(0, -1, -t), Vec3(0, 1, -t), Vec3(t, 0, -1), Vec3(t, 0, 1),
+                        Vec3(-t, 0, -1), Vec3(-t, 0, 1)})
+    m.vertices.push_back(p.normalized());
+  m.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                 {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                 {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  for (int k = 0; k < subdivisions; ++k) {
+    std::map<std::pair<Index, Index>, Index> midpoint;  // one new vertex per edge
+    const auto mid = [&](Index a, Index b) {
+      const auto [it, added] = midpoint.try_emplace(std::minmax(a, b), static_cast<Index>(m.vertices.size()));
+      if (added)
+        m.vertices.push_back(
+            (m.vertices[static_cast<std::size_t>(a)] + m.vertices[static_cast<std::size_t>(b)]).normalized());
+      return it->second;
+    };
+    std::vector<std::array<Index, 3>> finer;
+    finer.reserve(4 * m.triangles.size());
+    for (const auto& [a, b, c] : m.triangles) {
+      const Index ab = mid(a, b), bc = mid(b, c), ca = mid(c, a);
+      finer.insert(finer.end(), {{a, ab, ca}, {ab, b, bc}, {ca, bc, c}, {ab, bc, ca}});
+    }
+    m.triangles = std::move(finer);
+  }
+  m.num_facets = static_cast<Index>(m.triangles.size());
+  for (Index f = 0; f < m.num_facets; ++f) m.facet_of_triangle.push_back(f);
+  return m;
 }
 
 TriangleMesh make_builtin(const std::string& spec) {

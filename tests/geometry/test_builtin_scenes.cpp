@@ -142,6 +142,29 @@ TEST(BuiltinScenes, TetrahedronAndOctahedron) {
   expect_valid_as_built(o);
 }
 
+// The icosphere: 20 4^S triangles on the unit sphere, a closed convex surface counter-clockwise
+// from outside (validate_closed_convex flips nothing), its area below the sphere's 4 pi and
+// approaching it (the inscribed polyhedron's area grows with S).
+TEST(BuiltinScenes, IcosphereCountsAndConvexity) {
+  double previous = 0;
+  for (int s = 0; s <= 3; ++s) {
+    pg::TriangleMesh m = pg::make_icosphere(s);
+    ASSERT_EQ(m.triangles.size(), static_cast<std::size_t>(20) << (2 * s));
+    EXPECT_EQ(m.num_facets, static_cast<pg::Index>(m.triangles.size()));
+    EXPECT_EQ(m.vertices.size(), 10 * (std::size_t{1} << (2 * s)) + 2);  // Euler: V = F / 2 + 2
+    for (const pg::Vec3& v : m.vertices) EXPECT_NEAR(v.norm(), 1.0, 1e-15);
+    const double area = pg::surface_area(m);
+    EXPECT_LT(area, 4 * std::numbers::pi);
+    EXPECT_GT(area, previous);
+    previous = area;
+    const pg::ValidationReport r = pg::validate_closed_convex(m);
+    ASSERT_TRUE(r.valid) << r.message;
+    EXPECT_EQ(r.flipped_faces, 0u);
+  }
+  EXPECT_THROW(pg::make_icosphere(-1), pg::MeshError);
+  EXPECT_THROW(pg::make_icosphere(9), pg::MeshError);
+}
+
 TEST(BuiltinScenes, ByNameAndBadNames) {
   EXPECT_EQ(pg::make_builtin("cube").triangles.size(), 12u);
   EXPECT_EQ(pg::make_builtin("prism:6").triangles.size(), 20u);

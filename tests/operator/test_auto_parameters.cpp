@@ -51,41 +51,11 @@ struct Outcome {
   double error = 0;            // max_k |u - u_auto|
 };
 
-/// The icosahedron on the unit sphere, each triangle split into four by its edge midpoints
-/// `subdivisions` times, the midpoints pushed onto the sphere: 20 4^S triangles, counter-clockwise
-/// seen from outside (`inward`: from inside), one facet each.
+/// geometry::make_icosphere, counter-clockwise seen from outside (`inward`: from inside).
 geometry::TriangleMesh icosphere(int subdivisions, bool inward = false) {
-  const double t = (1 + std::sqrt(5.0)) / 2;
-  geometry::TriangleMesh m;
-  for (const Vec3& p : {Vec3(-1, t, 0), Vec3(1, t, 0), Vec3(-1, -t, 0), Vec3(1, -t, 0), Vec3(0, -1, t),
-                        Vec3(0, 1, t), Vec3(0, -1, -t), Vec3(0, 1, -t), Vec3(t, 0, -1), Vec3(t, 0, 1),
-                        Vec3(-t, 0, -1), Vec3(-t, 0, 1)})
-    m.vertices.push_back(p.normalized());
-  m.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                 {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                 {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-  for (int k = 0; k < subdivisions; ++k) {
-    std::map<std::pair<Index, Index>, Index> midpoint;
-    const auto mid = [&](Index a, Index b) {
-      const auto [it, added] = midpoint.try_emplace(std::minmax(a, b), static_cast<Index>(m.vertices.size()));
-      if (added) {
-        const Vec3 p = m.vertices[static_cast<std::size_t>(a)] + m.vertices[static_cast<std::size_t>(b)];
-        m.vertices.push_back(p.normalized());
-      }
-      return it->second;
-    };
-    std::vector<std::array<Index, 3>> finer;
-    for (const auto& [a, b, c] : m.triangles) {
-      const Index ab = mid(a, b), bc = mid(b, c), ca = mid(c, a);
-      finer.insert(finer.end(), {{a, ab, ca}, {ab, b, bc}, {ca, bc, c}, {ab, bc, ca}});
-    }
-    m.triangles = std::move(finer);
-  }
+  geometry::TriangleMesh m = geometry::make_icosphere(subdivisions);
   if (inward)
     for (auto& tr : m.triangles) std::swap(tr[1], tr[2]);
-  m.num_facets = static_cast<Index>(m.triangles.size());
-  for (Index f = 0; f < m.num_facets; ++f) m.facet_of_triangle.push_back(f);
-  m.source = "icosphere";
   return m;
 }
 

@@ -22,6 +22,11 @@ TriangleMesh make_prism(int k, double circumradius = 1.0, double height = 1.0);
 TriangleMesh make_tetrahedron();
 TriangleMesh make_octahedron();
 
+/// The icosahedron inscribed in the unit sphere, each triangle split into four by its edge
+/// midpoints `subdivisions` times (0..8) and the new vertices pushed onto the sphere: 20 4^S
+/// triangles, counter-clockwise seen from outside, one facet each.
+TriangleMesh make_icosphere(int subdivisions);
+
 /// By name: "cube", "prism:K" (circumradius 1, height 1), "tetrahedron", "octahedron".
 /// Throws MeshError for an unknown name or a bad K.
 TriangleMesh make_builtin(const std::string& spec);
