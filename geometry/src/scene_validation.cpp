@@ -36,6 +36,19 @@ SceneValidationReport rejected(SceneValidationReport report, const Failure& fail
   return report;
 }
 
+/// The scene accepted on the convex path: report.convex_report is valid, its notes follow the
+/// report's own.
+SceneValidationReport accepted_convex(SceneValidationReport report) {
+  const ValidationReport& cr = report.convex_report;
+  report.valid = true;
+  report.shape = SceneShape::convex;
+  report.notes.insert(report.notes.end(), cr.notes.begin(), cr.notes.end());
+  report.pieces = 1;
+  report.closed_pieces = 1;
+  report.flipped_faces = cr.flipped_faces;
+  return report;
+}
+
 /// The faces in contact, one note per pair up to kMaxContactNotes, then one summary.
 constexpr std::size_t kMaxContactNotes = 8;
 
@@ -76,13 +89,7 @@ SceneValidationReport validate_scene(TriangleMesh& mesh) {
   const ValidationReport& cr = report.convex_report;
   if (cr.valid) {
     mesh = std::move(convex);
-    report.valid = true;
-    report.shape = SceneShape::convex;
-    report.notes = cr.notes;
-    report.pieces = 1;
-    report.closed_pieces = 1;
-    report.flipped_faces = cr.flipped_faces;
-    return report;
+    return accepted_convex(std::move(report));
   }
   if (!refused_for_shape(cr)) {
     report.rule = cr.rule;
@@ -104,21 +111,14 @@ SceneValidationReport validate_scene(TriangleMesh& mesh) {
     const std::string split_note = std::to_string(report.t_junctions_split) +
                                    (report.t_junctions_split == 1 ? " vertex lay" : " vertices lay") +
                                    " inside an edge of another triangle (a T-junction); the edges were split there";
+    report.notes.push_back(split_note);
     TriangleMesh split = mesh;
-    const ValidationReport again = validate_closed_convex(split);
+    ValidationReport again = validate_closed_convex(split);
     if (again.valid) {
       mesh = std::move(split);
-      report.valid = true;
-      report.shape = SceneShape::convex;
-      report.convex_report = again;
-      report.notes.push_back(split_note);
-      report.notes.insert(report.notes.end(), again.notes.begin(), again.notes.end());
-      report.pieces = 1;
-      report.closed_pieces = 1;
-      report.flipped_faces = again.flipped_faces;
-      return report;
+      report.convex_report = std::move(again);
+      return accepted_convex(std::move(report));
     }
-    report.notes.push_back(split_note);
   }
   std::vector<Overlap> overlaps;
   if (auto f = check_no_crossing(mesh, exact_points(mesh), &overlaps)) {

@@ -435,8 +435,12 @@ TEST(SceneValidation, BoxesFaceToFaceLoseTheOverlapOnly) {
   EXPECT_NEAR(facet_area(b.mesh, c[0]), 0.04 - overlap, 1e-15);
   // Each face keeps its front side: +x for the first box's face, -x for the second's.
   for (std::size_t t = 0; t < b.mesh.triangles.size(); ++t) {
-    if (b.mesh.facet_of_triangle[t] == a[1]) EXPECT_GT(front_normal(b.mesh, t).x(), 0.99);
-    if (b.mesh.facet_of_triangle[t] == c[0]) EXPECT_LT(front_normal(b.mesh, t).x(), -0.99);
+    if (b.mesh.facet_of_triangle[t] == a[1]) {
+      EXPECT_GT(front_normal(b.mesh, t).x(), 0.99);
+    }
+    if (b.mesh.facet_of_triangle[t] == c[0]) {
+      EXPECT_LT(front_normal(b.mesh, t).x(), -0.99);
+    }
   }
 }
 
