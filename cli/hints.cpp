@@ -1,6 +1,6 @@
 #include "hints.hpp"
 
-#include <panelrad/support/error.hpp>
+#include <panelrad/scene/errors.hpp>
 
 namespace panelrad::cli {
 

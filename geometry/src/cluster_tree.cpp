@@ -9,8 +9,8 @@
 // Epeck circumcenter + squared_distance forced exact costs about 40 us per triangle (10 s for the
 // 262k clusters of the cube's level 7); the Mpzf evaluation is more than ten times cheaper.
 #include <panelrad/geometry/cluster_tree.hpp>
-#include <panelrad/geometry/byte_size.hpp>
-#include <panelrad/geometry/parallel_for.hpp>
+#include <panelrad/support/byte_size.hpp>
+#include <panelrad/support/parallel_for.hpp>
 #include <panelrad/geometry/planar_facets.hpp>
 #include <panelrad/geometry/subdivision.hpp>
 

@@ -15,7 +15,7 @@
 #include "polygon_triangulation.hpp"
 
 #include <panelrad/geometry/input_rounding.hpp>
-#include <panelrad/geometry/text_file.hpp>
+#include <panelrad/support/text_file.hpp>
 
 #include <algorithm>
 #include <array>

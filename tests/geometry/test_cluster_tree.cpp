@@ -1,7 +1,7 @@
 // The cluster tree (39)-(40): uniform 4-way midpoint subdivision, element numbering, inner normals,
 // areas, collocation points (22), circumcircles (41), memory refusal, transform invariance.
 #include <panelrad/geometry/builtin_scenes.hpp>
-#include <panelrad/geometry/byte_size.hpp>
+#include <panelrad/support/byte_size.hpp>
 #include <panelrad/geometry/cluster_tree.hpp>
 #include <panelrad/support/resources.hpp>
 

@@ -247,7 +247,7 @@ TEST(MeshIo, BoundedReadingOfMeshFiles) {
   EXPECT_CONTAINS(error_of([&] { pg::read_mesh(zero.string()); }), "zero.obj: cannot read: is a character device");
   const std::string tetra = (dir / "tetra.off").string();
   std::ofstream(tetra, std::ios::binary) << kTetraOff;
-  pg::TextReadOptions small;
+  panelrad::TextReadOptions small;
   small.max_bytes = kTetraOff.size() - 1;
   EXPECT_CONTAINS(error_of([&] { pg::read_mesh(tetra, nullptr, small); }),
                   "tetra.off: cannot read: the file is " + std::to_string(kTetraOff.size()) + " bytes");

@@ -4,7 +4,7 @@
 // faces that do not occlude, the consistency of the shaft classes with the visible parts and across
 // the midpoint subdivision, and the ray test on simple cases.
 #include <panelrad/geometry/occluders.hpp>
-#include <panelrad/geometry/parallel_for.hpp>
+#include <panelrad/support/parallel_for.hpp>
 
 #include <CGAL/Boolean_set_operations_2.h>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>

@@ -497,7 +497,7 @@ TEST_F(SceneFile, SizeLimitAppliesToMeshMtlAndJson) {
   write("cube.mtl", kGoodMtl);
   const std::string obj = cube_obj({"white", "white", "white", "white", "white", "white"});
   const std::string off = cube_off(R"({"default": {"rho": 0.5, "E": 0}})");
-  panelrad::geometry::TextReadOptions limit;
+  panelrad::TextReadOptions limit;
   // The OBJ (about 180 bytes) fits, the MTL (about 240 bytes) does not.
   limit.max_bytes = fs::file_size(obj);
   ASSERT_LT(limit.max_bytes, fs::file_size(dir_ / "cube.mtl"));

@@ -1,5 +1,5 @@
 # Checks that every #include <panelrad/...> points down the layers, never up:
-#   geometry -> quadrature -> lib: support -> scene -> operator -> distributed -> solve -> io
+#   support -> geometry -> quadrature -> lib: scene -> operator -> distributed -> solve -> io
 #   (and mpi, beside solve, on distributed) -> paper -> cli,
 #   examples, bench; and that nothing outside the tests includes the test-only oracles.
 # Run: cmake -DSOURCE_DIR=<project> -P check_layers.cmake (fails with the offending file and line).
@@ -10,18 +10,18 @@ endif()
 
 # folder (relative to SOURCE_DIR) -> header folders under <panelrad/...> it may include
 set(layer_folders
-  geometry/include geometry/src geometry/oracles quadrature
-  lib/include/panelrad/support lib/src/support lib/include/panelrad/scene lib/src/scene
+  support/include support/src geometry/include geometry/src geometry/oracles quadrature
+  lib/include/panelrad/scene lib/src/scene
   lib/include/panelrad/operator lib/src/operator lib/include/panelrad/distributed lib/src/distributed
   lib/include/panelrad/mpi lib/src/mpi lib/include/panelrad/solve lib/src/solve
   lib/include/panelrad/io lib/src/io paper cli examples bench)
-set(allowed_geometry/include geometry)
-set(allowed_geometry/src geometry)
-set(allowed_geometry/oracles geometry geometry/oracles)
-set(allowed_quadrature geometry quadrature)
-set(allowed_lib/include/panelrad/support geometry quadrature support)
-set(allowed_lib/src/support ${allowed_lib/include/panelrad/support})
-set(allowed_lib/include/panelrad/scene ${allowed_lib/src/support} scene)
+set(allowed_support/include support)
+set(allowed_support/src support)
+set(allowed_geometry/include support geometry)
+set(allowed_geometry/src support geometry)
+set(allowed_geometry/oracles support geometry geometry/oracles)
+set(allowed_quadrature support geometry quadrature)
+set(allowed_lib/include/panelrad/scene ${allowed_quadrature} scene)
 set(allowed_lib/src/scene ${allowed_lib/include/panelrad/scene})
 set(allowed_lib/include/panelrad/operator ${allowed_lib/src/scene} operator)
 set(allowed_lib/src/operator ${allowed_lib/include/panelrad/operator})

@@ -10,7 +10,7 @@
 #include <panelrad/scene/scene.hpp>
 #include <panelrad/solve/radiosity_solver.hpp>
 #include <panelrad/solve/scene_solver.hpp>
-#include <panelrad/support/error.hpp>
+#include <panelrad/scene/errors.hpp>
 
 #include "test_support.hpp"
 

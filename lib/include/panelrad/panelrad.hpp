@@ -14,7 +14,7 @@
 
 #include <panelrad/support/chunk_pool.hpp>
 #include <panelrad/support/kept_vector.hpp>
-#include <panelrad/support/error.hpp>
+#include <panelrad/scene/errors.hpp>
 #include <panelrad/support/resources.hpp>
 #include <panelrad/support/version.hpp>
 

@@ -2,7 +2,7 @@
 // radiosity equation, paper (7)), in one or more channels, from OBJ + MTL or OFF + JSON sidecar.
 // Every error names the file and the line or facet; nothing is returned partially.
 #include <panelrad/geometry/mesh_io.hpp>
-#include <panelrad/geometry/text_file.hpp>
+#include <panelrad/support/text_file.hpp>
 #include <panelrad/geometry/scene_validation.hpp>
 #include <panelrad/io/scene_file.hpp>
 
@@ -72,10 +72,10 @@ std::string lower_extension(const std::string& path) {
 
 /// The whole file, by the bounded reader (text_file.hpp: regular files only, size limit, no NUL
 /// byte); `role` says what it is for in messages ("MTL file named by x.obj:3").
-std::string read_text(const std::string& path, const std::string& role, const geometry::TextReadOptions& options) {
+std::string read_text(const std::string& path, const std::string& role, const TextReadOptions& options) {
   try {
-    return geometry::read_text_file(path, role, options);
-  } catch (const geometry::TextFileError& e) {
+    return read_text_file(path, role, options);
+  } catch (const TextFileError& e) {
     throw SceneFileError(e.what());
   }
 }
@@ -126,7 +126,7 @@ std::string value_problem(bool is_rho, double v) { return is_rho ? reflectivity_
 /// visibility computed; `shape` says which); notes get the reader's and the validator's notes. For
 /// an OBJ, `materials` (when given) gets its mtllib and per-face usemtl statements.
 geometry::TriangleMesh load_mesh(const std::string& path, std::vector<std::string>& notes,
-                                 const geometry::TextReadOptions& options, geometry::SceneShape& shape,
+                                 const TextReadOptions& options, geometry::SceneShape& shape,
                                  geometry::ObjMaterialUse* materials = nullptr) {
   geometry::TriangleMesh mesh;
   try {
@@ -195,7 +195,7 @@ std::array<double, 3> colour(const Line& l, const std::string& file) {
 /// map_Ke: textured rho or E; d < 1 or Tr > 0: a transparent surface, while the radiosity equation
 /// has opaque ones; a miscased ignored statement).
 void parse_mtl(const std::string& path, const std::string& role, std::map<std::string, Material>& materials,
-               std::size_t& defined, std::vector<std::string>& notes, const geometry::TextReadOptions& options) {
+               std::size_t& defined, std::vector<std::string>& notes, const TextReadOptions& options) {
   const std::string text = read_text(path, role, options);
   Material* current = nullptr;
   std::string current_name;
@@ -291,7 +291,7 @@ struct MaterialLibrary {
 };
 
 MaterialLibrary read_materials(const std::vector<std::pair<std::string, long>>& libraries, const std::string& path,
-                               std::vector<std::string>& notes, const geometry::TextReadOptions& options) {
+                               std::vector<std::string>& notes, const TextReadOptions& options) {
   MaterialLibrary library;
   for (const auto& [lib, line] : libraries) {
     parse_mtl(lib, "MTL file named by " + path + ":" + std::to_string(line), library.materials, library.defined, notes,
@@ -345,7 +345,7 @@ void assign_materials(SceneData& scene, const geometry::ObjMaterialUse& use, con
                         std::to_string(checked.size()) + " used by " + std::to_string(nf) + " facets");
 }
 
-SceneData load_obj_scene(const std::string& path, const geometry::TextReadOptions& options) {
+SceneData load_obj_scene(const std::string& path, const TextReadOptions& options) {
   SceneData scene;
   geometry::ObjMaterialUse use;  // mtllib and per-face usemtl, as the reader counted the faces
   scene.mesh = load_mesh(path, scene.notes, options, scene.shape, &use);
@@ -540,11 +540,11 @@ std::string sidecar_path(const std::string& path, const std::string& materials_p
 
 /// Reads and parses the sidecar `file` of the OFF `path`: a JSON object with no duplicate key and
 /// only the keys "channels", "default", "facets".
-Json read_sidecar(const std::string& file, const std::string& path, const geometry::TextReadOptions& options,
+Json read_sidecar(const std::string& file, const std::string& path, const TextReadOptions& options,
                   JsonLayout& layout) {
   Json doc;
   {
-    geometry::TextReadOptions json_options = options;
+    TextReadOptions json_options = options;
     json_options.strip_utf8_bom = false;  // nlohmann skips it; byte positions stay the file's
     const std::string text = read_text(file, "JSON sidecar of " + path, json_options);
     try {
@@ -729,7 +729,7 @@ void assign_facet_values(SceneData& scene, const FacetEntries& entries, const De
 }
 
 SceneData load_off_scene(const std::string& path, const std::string& materials_path,
-                            const geometry::TextReadOptions& options) {
+                            const TextReadOptions& options) {
   SceneData scene;
   scene.mesh = load_mesh(path, scene.notes, options, scene.shape);
   const auto nf = static_cast<std::size_t>(scene.mesh.num_facets);
@@ -747,7 +747,7 @@ SceneData load_off_scene(const std::string& path, const std::string& materials_p
 }  // namespace
 
 Scene load_channel_scene(const std::string& path, const std::string& materials_path,
-                         const geometry::TextReadOptions& options) {
+                         const TextReadOptions& options) {
   const std::string ext = lower_extension(path);
   if (ext == ".obj") {
     if (!materials_path.empty())

@@ -1,6 +1,6 @@
 #include <panelrad/operator/collocation.hpp>
 #include <panelrad/support/resources.hpp>
-#include <panelrad/geometry/parallel_for.hpp>
+#include <panelrad/support/parallel_for.hpp>
 
 #include <cmath>
 #include <string>
@@ -15,7 +15,7 @@ namespace {
 // thread count (a deterministic message).
 template <class Row>
 void for_each_row(Index n, const Row& row) {
-  geometry::parallel_for(n, row, 16);
+  parallel_for(n, row, 16);
 }
 
 }  // namespace

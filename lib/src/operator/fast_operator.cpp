@@ -813,7 +813,7 @@ far_field_batch::RowPoint FastOperator::far_row_point(Index i) const {
 // with a shift of centre. An element's moments, v_e times those of its shape, are formed where
 // the far field reads them (cluster_moments), never stored: three quarters of the clusters.
 // O(n) per product.
-void FastOperator::compute_moments(const Eigen::VectorXd& v, geometry::UninitializedVector<double>& moments) const {
+void FastOperator::compute_moments(const Eigen::VectorXd& v, UninitializedVector<double>& moments) const {
   const geometry::ClusterTree& tree = *tree_;
   const int L = tree.finest_level();
   const std::size_t T = static_cast<std::size_t>(terms_);
@@ -1011,7 +1011,7 @@ void FastOperator::apply_row_columns(Index i, const double* v, const double* mom
   for (int c = 0; c < C; ++c) out[c] = near[c] + sums.total(c) + local[c];
 }
 
-double FastOperator::apply_row(Index i, const Eigen::VectorXd& v, const geometry::UninitializedVector<double>& moments,
+double FastOperator::apply_row(Index i, const Eigen::VectorXd& v, const UninitializedVector<double>& moments,
                                const std::vector<double>& local_values, double* scratch) const {
   double out;
   apply_row_columns<1>(i, v.data(), moments.data(), local_values.data(), scratch, &out);
@@ -1038,7 +1038,7 @@ void FastOperator::apply_rows(const Eigen::VectorXd& v, Eigen::VectorXd& y_block
   std::unique_lock<std::mutex> lock;
   ProductWorkspace own;
   ProductWorkspace& w = acquire_workspace(lock, own);
-  geometry::UninitializedVector<double>& moments = w.moments;
+  UninitializedVector<double>& moments = w.moments;
   std::vector<double>& local_values = w.local_values;
   compute_moments(v, moments);
   if (targets_) evaluate_local_expansions(moments.data(), v.data(), 1, active_targets_, local_values);
@@ -1070,9 +1070,9 @@ void FastOperator::apply_rows_block(const Eigen::MatrixXd& V, Eigen::MatrixXd& Y
   std::unique_lock<std::mutex> lock;
   ProductWorkspace own;
   ProductWorkspace& w = acquire_workspace(lock, own);
-  geometry::UninitializedVector<double>& moments = w.moments;
-  geometry::UninitializedVector<double>& v_block = w.v_block;
-  geometry::UninitializedVector<double>& m_block = w.m_block;
+  UninitializedVector<double>& moments = w.moments;
+  UninitializedVector<double>& v_block = w.v_block;
+  UninitializedVector<double>& m_block = w.m_block;
   std::vector<double>& local_values = w.local_values;
   for (Index first = 0; first < columns; first += kBlockColumns) {
     const int C = static_cast<int>(std::min<Index>(kBlockColumns, columns - first));
@@ -1294,7 +1294,7 @@ FastSelfCheck FastOperator::self_check(const FastSelfCheckReference& reference) 
   std::unique_lock<std::mutex> lock;
   ProductWorkspace own;
   ProductWorkspace& w = acquire_workspace(lock, own);
-  geometry::UninitializedVector<double>& moments = w.moments;
+  UninitializedVector<double>& moments = w.moments;
   std::vector<double>& local_values = w.local_values;
   std::vector<double> fast(S * V, 0.0);
   for (std::size_t k = 0; k < V; ++k) {

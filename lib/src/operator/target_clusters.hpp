@@ -18,7 +18,7 @@
 // at least as large as the rectangle (R(tau) >= R_b); otherwise it is handed to sigma's children,
 // and from level lt to the per-point coverings.
 #include <panelrad/geometry/cluster_tree.hpp>
-#include <panelrad/geometry/uninitialized_vector.hpp>
+#include <panelrad/support/uninitialized_vector.hpp>
 #include <panelrad/operator/local_expansion.hpp>
 #include <panelrad/support/kept_vector.hpp>
 

@@ -1,6 +1,6 @@
 #include <panelrad/operator/auto_parameters.hpp>
 #include <panelrad/solve/scene_solver.hpp>
-#include <panelrad/support/error.hpp>
+#include <panelrad/scene/errors.hpp>
 #include <panelrad/support/resources.hpp>
 
 #include <array>

@@ -5,7 +5,7 @@
 // of cluster k of level l are the contiguous range [k * 4^(L-l), (k+1) * 4^(L-l)).
 #include <panelrad/geometry/mesh.hpp>
 #include <panelrad/geometry/planar_facets.hpp>
-#include <panelrad/geometry/uninitialized_vector.hpp>
+#include <panelrad/support/uninitialized_vector.hpp>
 
 #include <array>
 #include <cstddef>

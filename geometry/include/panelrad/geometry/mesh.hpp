@@ -1,6 +1,6 @@
 #pragma once
 // Plain mesh types shared by every layer. No CGAL here: geometry/src is the only place CGAL lives.
-#include <panelrad/geometry/error.hpp>
+#include <panelrad/support/error.hpp>
 
 #include <Eigen/Core>
 

@@ -48,7 +48,7 @@
 // with its line and byte offset, after reading at most its 64 KiB chunk). A leading UTF-8
 // byte-order mark is removed. Streams (read_off, read_obj) are read the same way up to the limit.
 #include <panelrad/geometry/mesh.hpp>
-#include <panelrad/geometry/text_file.hpp>
+#include <panelrad/support/text_file.hpp>
 
 #include <iosfwd>
 #include <string>

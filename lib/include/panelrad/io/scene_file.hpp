@@ -25,7 +25,7 @@
 // Every value is checked (reflectivity_problem, emission_problem): rho finite, in [0, 1) and not
 // subnormal; E finite, >= 0, and either 0 or in [kMinPositiveEmission, kMaxEmission] = [1e-100,
 // 1e100]; else an error naming the file, the line, the facet (input face index) or the material.
-// All files are read by the bounded reader (geometry/text_file.hpp): regular files only, at most
+// All files are read by the bounded reader (support/text_file.hpp): regular files only, at most
 // TextReadOptions::max_bytes (default 1 GiB), no NUL byte; a UTF-8 byte-order mark is accepted.
 // The mesh is read with geometry::read_mesh and validated with geometry::validate_scene (a closed
 // convex surface, or any set of planar polygons that do not cross, each piece consistently
@@ -33,8 +33,8 @@
 // validator's reason.
 #include <panelrad/geometry/mesh.hpp>
 #include <panelrad/scene/scene.hpp>
-#include <panelrad/support/error.hpp>
-#include <panelrad/geometry/text_file.hpp>
+#include <panelrad/scene/errors.hpp>
+#include <panelrad/support/text_file.hpp>
 
 #include <stdexcept>
 #include <string>
@@ -48,6 +48,6 @@ namespace panelrad {
 /// Returns a Scene with the file's channels, rho and E per facet, its notes and (OBJ) the
 /// material of each facet. Throws SceneFileError (never a partial scene).
 Scene load_channel_scene(const std::string& path, const std::string& materials_path = "",
-                         const geometry::TextReadOptions& options = {});
+                         const TextReadOptions& options = {});
 
 }  // namespace panelrad

@@ -12,7 +12,7 @@
 // near field (43) and far coefficients (44)-(45) of those rows; the cluster moments (48) of a
 // product still need all of v.
 #include <panelrad/geometry/occluders.hpp>
-#include <panelrad/geometry/uninitialized_vector.hpp>
+#include <panelrad/support/uninitialized_vector.hpp>
 #include <panelrad/operator/clustering_parameters.hpp>
 #include <panelrad/operator/collocation.hpp>
 #include <panelrad/operator/far_field.hpp>
@@ -352,7 +352,7 @@ class FastOperator final : public RadiosityOperator {
   std::vector<geometry::Index> self_check_rows(int samples) const;
   void exact_rows(FastSelfCheckReference& reference) const;
 
-  void compute_moments(const Eigen::VectorXd& v, geometry::UninitializedVector<double>& moments) const;
+  void compute_moments(const Eigen::VectorXd& v, UninitializedVector<double>& moments) const;
   /// Row i's side of its far pairs (P_i in the far field's unit, n_P, rho_i/pi).
   far_field_batch::RowPoint far_row_point(geometry::Index i) const;
   /// The frame of cluster `id` (global id): its origin A(tau), its root's axes.
@@ -363,7 +363,7 @@ class FastOperator final : public RadiosityOperator {
   /// The moments of every cluster for C columns: `moments` (compute_moments) above the finest
   /// level, v (C columns interleaved) times the element moments by shape on it.
   far_field_batch::ClusterMoments cluster_moments(const double* moments, const double* v) const;
-  double apply_row(geometry::Index i, const Eigen::VectorXd& v, const geometry::UninitializedVector<double>& moments,
+  double apply_row(geometry::Index i, const Eigen::VectorXd& v, const UninitializedVector<double>& moments,
                    const std::vector<double>& local_values, double* scratch) const;
   /// Row i of the product for C vectors: out[c] = (K_n v_c)_i, each from its own moments, every
   /// sum in apply_row's order; v and moments hold the C columns interleaved (j C + c).
@@ -417,7 +417,7 @@ class FastOperator final : public RadiosityOperator {
   // self-check's products use them too. A product that finds them in use by another one running
   // at the same time uses arrays of its own.
   struct ProductWorkspace {
-    geometry::UninitializedVector<double> moments, v_block, m_block;
+    UninitializedVector<double> moments, v_block, m_block;
     std::vector<double> local_values;
   };
   /// The shared workspace when it is free, else `own` (the lock, when taken, is held by `lock`).

@@ -7,7 +7,7 @@
 #include <panelrad/distributed/blocked_reductions.hpp>
 #include <panelrad/distributed/communicator.hpp>
 #include <panelrad/operator/dense_operator.hpp>
-#include <panelrad/support/error.hpp>
+#include <panelrad/scene/errors.hpp>
 #include <panelrad/operator/linear_operator.hpp>
 
 #include <Eigen/Core>

@@ -1,8 +1,8 @@
-#include <panelrad/geometry/byte_size.hpp>
+#include <panelrad/support/byte_size.hpp>
 
 #include <cstdio>
 
-namespace panelrad::geometry {
+namespace panelrad {
 
 std::string format_bytes(double bytes) {
   char buf[64];
@@ -13,4 +13,4 @@ std::string format_bytes(double bytes) {
   return buf;
 }
 
-}  // namespace panelrad::geometry
+}  // namespace panelrad

@@ -1,6 +1,6 @@
 // parallel_for: every index visited once, and of several failing indices the lowest one's
 // exception is the one rethrown, whatever the thread count and the order the failures happen in.
-#include <panelrad/geometry/parallel_for.hpp>
+#include <panelrad/support/parallel_for.hpp>
 
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -16,7 +16,7 @@
 
 namespace {
 
-using panelrad::geometry::parallel_for;
+using panelrad::parallel_for;
 
 /// Restores the OpenMP thread count on scope exit.
 class ThreadCount {

@@ -8,9 +8,9 @@
 //     blocks are freed): in some processes every setup would pay a page fault per 4 KiB (in a
 //     virtual machine, one of the host's too), and page faults do not scale with threads.
 //   - Smaller storage comes from the global operator new, aligned for T.
-//   - resize() leaves new elements default-initialized, as geometry::UninitializedVector: a
+//   - resize() leaves new elements default-initialized, as UninitializedVector: a
 //     parallel loop writes them first.
-#include <panelrad/geometry/uninitialized_vector.hpp>
+#include <panelrad/support/uninitialized_vector.hpp>
 
 #include <cstddef>
 #include <limits>
@@ -28,7 +28,7 @@ void give_back(void* p) noexcept;
 
 /// An UninitializedAllocator (resize default-initializes) whose large storage the pool keeps.
 template <class T>
-struct KeptAllocator : geometry::UninitializedAllocator<T> {
+struct KeptAllocator : UninitializedAllocator<T> {
   static_assert(alignof(T) <= 64, "KeptAllocator: storage is 64-byte aligned");
   using value_type = T;
   template <class U>

@@ -4,7 +4,7 @@
 #include <exception>
 #include <type_traits>
 
-namespace panelrad::geometry {
+namespace panelrad {
 
 /// Runs body(k) for k in [0, count) in parallel (OpenMP, dynamic schedule of `chunk` indices);
 /// when some bodies throw, rethrows the exception of the lowest failing k once the loop is done
@@ -30,4 +30,4 @@ void parallel_for(I count, Body&& body, int chunk = 256) {
   if (failure) std::rethrow_exception(failure);
 }
 
-}  // namespace panelrad::geometry
+}  // namespace panelrad

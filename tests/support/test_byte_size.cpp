@@ -1,11 +1,11 @@
 // format_bytes: decimal units with the precision the memory messages use.
-#include <panelrad/geometry/byte_size.hpp>
+#include <panelrad/support/byte_size.hpp>
 
 #include <gtest/gtest.h>
 
 namespace {
 
-using panelrad::geometry::format_bytes;
+using panelrad::format_bytes;
 
 TEST(ByteSize, DecimalUnits) {
   EXPECT_EQ(format_bytes(0), "0 B");

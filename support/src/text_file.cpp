@@ -1,6 +1,6 @@
 // Bounded reading of text input files (text_file.hpp): stat before open, a size limit known before
 // the first byte is read, chunked reading with a NUL check per chunk.
-#include <panelrad/geometry/text_file.hpp>
+#include <panelrad/support/text_file.hpp>
 
 #include <algorithm>
 #include <cerrno>
@@ -13,7 +13,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-namespace panelrad::geometry {
+namespace panelrad {
 namespace {
 
 /// The first chunk is small so that a binary file is refused after reading little of it.
@@ -39,7 +39,7 @@ const char* file_kind(mode_t mode) {
 std::string too_large(std::uint64_t size, std::uint64_t limit) {
   return "is " + std::to_string(size) + " bytes (" + describe_bytes(size) + "), above the limit of " +
          std::to_string(limit) + " bytes (" + describe_bytes(limit) +
-         ") for text input files (panelrad::geometry::TextReadOptions::max_bytes)";
+         ") for text input files (panelrad::TextReadOptions::max_bytes)";
 }
 
 /// Refuses the text when its bytes from `from` on contain a NUL: names the line, the byte offset
@@ -173,4 +173,4 @@ std::string read_text_stream(std::istream& in, const std::string& name, const Te
   return read_chunks(read_some, 0, name, options);
 }
 
-}  // namespace panelrad::geometry
+}  // namespace panelrad

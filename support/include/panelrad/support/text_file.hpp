@@ -22,14 +22,14 @@
 // byte of OBJ text (measured: 557 MB peak for a 107 MB OBJ of 2 million vertices and 2 million
 // triangles); a 1 GiB OBJ holds some 20 million vertices, far more facets than a solve can use,
 // and its reading stays within about 6 GB.
-#include <panelrad/geometry/error.hpp>
+#include <panelrad/support/error.hpp>
 
 #include <cstdint>
 #include <iosfwd>
 #include <stdexcept>
 #include <string>
 
-namespace panelrad::geometry {
+namespace panelrad {
 
 /// The default size limit of a text input file: 1 GiB.
 inline constexpr std::uint64_t kDefaultMaxTextFileBytes = std::uint64_t{1} << 30;
@@ -58,4 +58,4 @@ std::string read_text_stream(std::istream& in, const std::string& name, const Te
 /// "1 GiB", "512 MiB", "1.5 GiB", "3 bytes": a byte count for messages.
 std::string describe_bytes(std::uint64_t bytes);
 
-}  // namespace panelrad::geometry
+}  // namespace panelrad

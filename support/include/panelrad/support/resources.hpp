@@ -2,7 +2,7 @@
 // Run-time resources: wall clock, peak resident memory, memory available for a new allocation,
 // and the number of threads worth starting.
 #include <panelrad/support/error.hpp>
-#include <panelrad/geometry/byte_size.hpp>
+#include <panelrad/support/byte_size.hpp>
 
 #include <chrono>
 #include <cstddef>
@@ -63,9 +63,6 @@ std::size_t available_memory_bytes();
 
 /// "5.86 GB available (address-space limit, ulimit -v)": the figure and which limit gives it.
 std::string describe_available_memory();
-
-/// "1.23 GB" style (geometry::format_bytes).
-using geometry::format_bytes;
 
 /// Threads used by parallel regions (OpenMP); set_threads(0) keeps the default.
 void set_threads(int threads);
