@@ -469,7 +469,7 @@ TEST(ClusterTree, RefusesTreesThatDoNotFitBeforeAllocating) {
   const TriangleMesh cube = local_cube();
   // Level 5 needs about 12 * 4^5 * 216 B = 2.7 MB: refused under a 1 MB limit, estimate shown.
   const std::string msg = error_of([&] { ClusterTree(cube, 5, std::size_t{1} << 20); });
-  const std::string shown = format_bytes(static_cast<double>(ClusterTree::estimate_bytes(12, 5)));  // "2.7 MB"
+  const std::string shown = panelrad::format_bytes(static_cast<double>(ClusterTree::estimate_bytes(12, 5)));  // "2.7 MB"
   EXPECT_GT(ClusterTree::estimate_bytes(12, 5), std::size_t{2} << 20);
   EXPECT_NE(msg.find("level 5"), std::string::npos) << msg;
   EXPECT_NE(msg.find("needs an estimated " + shown), std::string::npos) << msg << " lacks " << shown;

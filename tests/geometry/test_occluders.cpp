@@ -567,7 +567,7 @@ TEST(Occluders, ConcurrentQueriesGiveTheSerialResults) {
   };
   std::vector<Result> serial(queries.size()), parallel(queries.size());
   for (std::size_t k = 0; k < queries.size(); ++k) run(queries[k], serial[k]);
-  parallel_for(queries.size(), [&](std::size_t k) { run(queries[k], parallel[k]); }, 1);
+  panelrad::parallel_for(queries.size(), [&](std::size_t k) { run(queries[k], parallel[k]); }, 1);
   int partial = 0;
   for (std::size_t k = 0; k < queries.size(); ++k) {
     EXPECT_EQ(parallel[k].cls, serial[k].cls) << k;
@@ -762,7 +762,7 @@ TEST(Occluders, ConcurrentSubTriangleClassificationsGiveTheSerialResults) {
   };
   std::vector<std::vector<double>> serial(configs.size()), parallel(configs.size());
   for (std::size_t k = 0; k < configs.size(); ++k) run(configs[k], serial[k]);
-  parallel_for(configs.size(), [&](std::size_t k) { run(configs[k], parallel[k]); }, 1);
+  panelrad::parallel_for(configs.size(), [&](std::size_t k) { run(configs[k], parallel[k]); }, 1);
   for (std::size_t k = 0; k < configs.size(); ++k) EXPECT_EQ(parallel[k], serial[k]) << k;
 }
 

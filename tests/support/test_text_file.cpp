@@ -17,7 +17,6 @@
 #include <unistd.h>
 
 namespace fs = std::filesystem;
-namespace pg = panelrad::geometry;
 
 namespace {
 
