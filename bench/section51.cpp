@@ -35,12 +35,12 @@ struct Timing {
 // Neumann iteration (34) to the tolerance tied to the discretization error (as the paper stopped
 // at the best possible accuracy). Setup: the cluster tree and the operator (E manufacturing is
 // test data, not counted).
-RadiositySolverOptions cube_options(int level, OperatorMethod method, const OperatorOptions& manual = {},
+SolveOptions cube_options(int level, OperatorMethod method, const OperatorOptions& manual = {},
                                     SolverKind solver = SolverKind::neumann) {
-  RadiositySolverOptions o;
+  SolveOptions o;
   o.level = level;
-  o.method = method;
-  o.manual = manual;
+  o.op = manual;
+  o.op.method = method;
   o.fold_reflectivity = true;
   o.solver.kind = solver;
   return o;

@@ -249,7 +249,7 @@ Run run_one(const Scene& scene, const std::string& scene_name, const Collocation
   const auto K = make_operator(col, op);
   r.setup_s = col.tree_seconds() + clock.seconds();  // refinement + tree + operator
   const SolveResult s = solve(*K, col.emissivity(), solver, scene.max_reflectivity());
-  require_converged(s);  // a sweep row is only meaningful at the tolerance
+  s.require_converged();  // a sweep row is only meaningful at the tolerance
   r.solve_s = s.seconds;
   r.iterations = s.iterations;
   r.max_error = col.max_error(s.u);  // (51)

@@ -121,7 +121,7 @@ int main(int argc, char** argv) {
     }
   }
   try {
-    const Scene general = load_channel_scene(scene_path);
+    const Scene general = load_scene(scene_path);
     const Scene cube = make_paper_cube_scene();
     std::printf("visibility cost, threads %d, scene %s (%zu triangles, %s)\n", max_threads(), scene_path.c_str(),
                 general.mesh().triangles.size(), geometry::to_string(general.shape()));

@@ -1,7 +1,7 @@
 #pragma once
 // The processes of this run of the program: one (the default build, or an MPI build started
 // without mpirun), or the ranks of `mpirun -np K panelrad ...` (an MPI build, PANELRAD_MPI), which
-// share each solve's rows (RadiositySolverOptions::communicator). Rank 0 alone writes the outputs,
+// share each solve's rows (SolveOptions::communicator). Rank 0 alone writes the outputs,
 // the progress and the summary.
 #include <panelrad/distributed/communicator.hpp>
 

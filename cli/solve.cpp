@@ -6,6 +6,7 @@
 
 #include <panelrad/operator/auto_parameters.hpp>
 #include <panelrad/support/resources.hpp>
+#include <panelrad/io/outputs.hpp>
 #include <panelrad/io/scene_file.hpp>
 #include <panelrad/io/scene_output.hpp>
 #include <panelrad/solve/scene_solver.hpp>
@@ -79,7 +80,7 @@ std::string check_formats(const std::string& formats, std::set<std::string>* wan
 /// What the command line says, in the library's option structs.
 struct SolveCommandLine {
   std::string scene_path, prefix, materials, formats = "csv,ply,vtk,png";
-  RadiositySolverOptions o;
+  SolveOptions o;
   bool quiet = false;
   int threads = 0;
   std::set<std::string> wanted;  // from formats
@@ -112,7 +113,7 @@ std::string view_problem(const std::string& text, geometry::Vec3* out) {
 
 void add_solve_options(CLI::App& app, SolveCommandLine& line) {
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);  // repeated: the last counts
-  RadiositySolverOptions& o = line.o;
+  SolveOptions& o = line.o;
   app.add_option("SCENE", line.scene_path);  // checked after parsing, so an unknown option is said first
   CLI::Option* levels = app.add_option("--levels", o.level)->type_name("L")->transform(integer_in(0, 12));
   CLI::Option* max_elements =
@@ -125,16 +126,16 @@ void add_solve_options(CLI::App& app, SolveCommandLine& line) {
   app.add_option("--formats", line.formats)->type_name("csv,ply,vtk,png")->check([](const std::string& formats) {
     return check_formats(formats, nullptr);
   });
-  app.add_option_function<std::string>("--method", [&o](const std::string& v) { o.method = parse_operator_method(v); })
+  app.add_option_function<std::string>("--method", [&o](const std::string& v) { o.op.method = parse_operator_method(v); })
       ->type_name("auto|dense|fast")
       ->check(one_of({"auto", "dense", "fast"}));
-  app.add_option("--eta", o.manual.eta)->type_name("E")->transform(number_in(1e-3, 0.99));
-  app.add_option("--degree", o.manual.degree)->type_name("M")->transform(integer_in(0, 12));
+  app.add_option("--eta", o.op.eta)->type_name("E")->transform(number_in(1e-3, 0.99));
+  app.add_option("--degree", o.op.degree)->type_name("M")->transform(integer_in(0, 12));
   app.add_option_function<std::string>("--near",
-                                       [&o](const std::string& v) { o.manual.near.rule = parse_near_rule(v); })
+                                       [&o](const std::string& v) { o.op.near.rule = parse_near_rule(v); })
       ->type_name("exact|quadrature")
       ->check(one_of({"exact", "quadrature"}));
-  app.add_option("--mu", o.manual.near.mu)->type_name("K")->transform(integer_in(0, 6));
+  app.add_option("--mu", o.op.near.mu)->type_name("K")->transform(integer_in(0, 6));
   app.add_option_function<std::string>("--solver", [&o](const std::string& v) { o.solver.kind = parse_solver(v); })
       ->type_name("auto|neumann|gmres")
       ->check(one_of({"auto", "neumann", "gmres"}));
@@ -161,7 +162,7 @@ void add_solve_options(CLI::App& app, SolveCommandLine& line) {
 void check_solve_options(const CLI::App& app, SolveCommandLine& line) {
   if (app.count("SCENE") == 0) throw UsageError("no scene given");
   const bool manual = app.count("--eta") + app.count("--degree") + app.count("--near") + app.count("--mu") > 0;
-  if (manual && line.o.method == OperatorMethod::automatic)
+  if (manual && line.o.op.method == OperatorMethod::automatic)
     throw UsageError("--eta, --degree, --near and --mu need --method dense or fast");
   (void)check_formats(line.formats, &line.wanted);  // checked by the option's validator
   if (line.prefix.empty()) line.prefix = default_prefix(line.scene_path);
@@ -171,8 +172,10 @@ void check_solve_options(const CLI::App& app, SolveCommandLine& line) {
 /// The scene, with what loading did on stderr (unless quiet), and a note when --max-elements is
 /// below n0 (said even when quiet: the run then does not do what was asked). Only the process
 /// that writes the outputs says anything.
-Scene load_scene(const SolveCommandLine& line, bool max_given, bool writer) {
-  const Scene scene = load_channel_scene(line.scene_path, line.materials);  // errors: exit 1 (main)
+Scene read_scene(const SolveCommandLine& line, bool max_given, bool writer) {
+  LoadOptions load;
+  load.materials_path = line.materials;
+  const Scene scene = load_scene(line.scene_path, load);  // errors: exit 1 (main)
   if (!line.quiet && writer)
     for (const std::string& note : scene.notes()) std::cerr << "panelrad solve: note: " << note << "\n";
   if (writer && line.o.level < 0 && static_cast<long long>(scene.mesh().triangles.size()) > line.o.max_elements)
@@ -192,26 +195,6 @@ void check_outputs(const Scene& scene, const std::string& scene_path, const std:
     throw std::runtime_error(scene_path + ": " + e.what());
   }
   for (const std::string& path : outputs) check_output_path(path);
-}
-
-/// All outputs are written to temporaries first and replace the previous ones only when every
-/// one was written: a failure (or SIGINT/SIGTERM) leaves the previous set untouched.
-void write_outputs(const SceneSolution& s, const std::vector<std::string>& outputs,
-                   const std::optional<geometry::Vec3>& view_direction, const geometry::Vec3& up) {
-  OutputSet set;
-  for (const std::string& path : outputs) {
-    const std::string format = path.substr(path.size() - 3);
-    if (format == "csv") set.add(path, radiosity_csv(s.field));
-    if (format == "ply") set.add(path, radiosity_ply(s.field));
-    if (format == "vtk") set.add(path, radiosity_vtk(s.field));
-    if (format == "png") {
-      RenderOptions view;
-      view.view_direction = view_direction ? *view_direction : brightest_view_direction(s.field);  // towards the light
-      view.up = up;
-      set.add(path, radiosity_png(s.field, view));
-    }
-  }
-  set.commit();
 }
 
 /// The summary on stdout: size, method, self-check, times, each channel's energy balance.
@@ -261,10 +244,9 @@ void print_summary(const Scene& scene, const std::string& scene_path, const Scen
 }
 
 int run_solve(const CLI::App& app, const SolveCommandLine& command_line) {
-  RadiositySolverOptions o = command_line.o;
-  std::vector<std::string> outputs;  // PREFIX.<format>, in writing order
-  for (const char* f : {"csv", "ply", "vtk", "png"})
-    if (command_line.wanted.count(f)) outputs.push_back(command_line.prefix + "." + f);
+  SolveOptions o = command_line.o;
+  const std::vector<std::string> formats(command_line.wanted.begin(), command_line.wanted.end());
+  const std::vector<std::string> outputs = output_paths(command_line.prefix, formats);  // in writing order
   // SIGINT/SIGTERM/SIGHUP remove the outputs' temporaries and end the run (status 128 + signal).
   install_output_signal_handlers();
   set_threads(command_line.threads);
@@ -274,12 +256,15 @@ int run_solve(const CLI::App& app, const SolveCommandLine& command_line) {
   if (!command_line.quiet && writer)
     o.progress = [](const std::string& line) { std::cerr << "panelrad solve: " << line << "\n"; };
 
-  const Scene scene = load_scene(command_line, app.count("--max-elements") > 0, writer);
+  const Scene scene = read_scene(command_line, app.count("--max-elements") > 0, writer);
   if (writer) check_outputs(scene, command_line.scene_path, outputs);
   const SceneSolution s = solve_scene(scene, o);
-  require_converged(s);  // a channel out of iterations: exit 1 with the SolverError's message, no outputs
+  s.require_converged();  // a channel out of iterations: exit 1 with the SolverError's message, no outputs
   if (!writer) return 0;
-  write_outputs(s, outputs, command_line.view, command_line.up);
+  OutputOptions picture;
+  picture.view_direction = command_line.view;
+  picture.up = command_line.up;
+  write_outputs(s, command_line.prefix, formats, picture);
 
   print_summary(scene, command_line.scene_path, s);
   for (const std::string& w : s.warnings) std::fprintf(stderr, "panelrad solve: warning: %s\n", w.c_str());

@@ -2,7 +2,7 @@
 // sequence of levels to show the centroid method's O(h) convergence (paper Theorem 5, Table 1).
 //
 // Loads examples/meshes/hexagonal_prism.off (a right prism over a regular hexagon, circumradius 1,
-// height 1) with Scene::load, sets rho = 0.6 on the six sides and 0.3 on the two caps, and
+// height 1) with load_scene (geometry only), sets rho = 0.6 on the six sides and 0.3 on the two caps, and
 // manufactures E = u - K u from the known solution u(Q) = 1 + 0.5 x - 0.25 y + 0.75 z^2. It then
 // solves on levels 1, 2, 3 (n = 20 * 4^level), one RadiositySolver per level with the automatic
 // parameters (choose_parameters at the scene's rho_max 0.6, self-checked), and prints max_k |u(P_k) - u_n(P_k)| per level and the ratio to the previous level.
@@ -19,6 +19,7 @@
 #include <panelrad/operator/auto_parameters.hpp>
 #include <panelrad/operator/collocation.hpp>
 #include <panelrad/operator/operator_factory.hpp>
+#include <panelrad/io/scene_file.hpp>
 #include <panelrad/scene/scene.hpp>
 #include <panelrad/solve/radiosity_solver.hpp>
 
@@ -45,9 +46,10 @@ int main(int argc, char** argv) {
   }
   try {
     // 1. Load and validate the mesh (closed, convex, exact predicates); notes say what was repaired.
-    std::vector<std::string> notes;
-    Scene scene = Scene::load(path, &notes);
-    for (const std::string& note : notes) std::printf("note: %s\n", note.c_str());
+    LoadOptions geometry_only;
+    geometry_only.geometry_only = true;  // rho and E are set below
+    Scene scene = load_scene(path, geometry_only);
+    for (const std::string& note : scene.notes()) std::printf("note: %s\n", note.c_str());
     // 2. rho per facet. Facets are the OFF file's faces in order: 0-5 the rectangular sides, 6 the
     //    bottom and 7 the top hexagon. Check that numbering: caps have inner normal +-z.
     if (scene.num_facets() != 8) {
@@ -79,7 +81,7 @@ int main(int argc, char** argv) {
     bool pass = true;
     for (int level = 1; level <= max_level; ++level) {
       const auto start = Clock::now();
-      RadiositySolverOptions options;  // automatic parameters, tolerance tied to the discretization
+      SolveOptions options;  // automatic parameters, tolerance tied to the discretization
       options.level = level;
       options.fold_reflectivity = true;
       const RadiositySolver solver(scene, options);

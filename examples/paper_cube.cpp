@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
     // 2. The solver object: the level-`level` refinement with collocation at the centroids (22)
     //    (rho, E and the true u evaluated there), the operator K_n (33) with rho in its rows, its
     //    parameters by the automatic rule, and a tolerance tied to the O(h) discretization error.
-    RadiositySolverOptions options;
+    SolveOptions options;
     options.level = level;
     options.fold_reflectivity = true;
     const RadiositySolver solver(scene, options);

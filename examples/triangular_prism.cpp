@@ -55,10 +55,10 @@ int main(int argc, char** argv) {
     }
     // 3. Solve: subdivision, one operator for all channels (automatic method), each channel solved
     //    to a tolerance tied to the discretization error, and the energy balance checked.
-    RadiositySolverOptions options;
+    SolveOptions options;
     options.level = level;
     const SceneSolution solution = solve_scene(scene, options);
-    require_converged(solution);
+    solution.require_converged();
     std::printf("triangular prism, level %d: n = %d, %s\n", solution.level, static_cast<int>(solution.n),
                 solution.method.c_str());
     std::printf("times: subdivision %.3f s, operator %.3f s, solve %.3f s, total %.3f s\n", solution.subdivision_s,

@@ -177,18 +177,33 @@ SceneValidationReport validate_scene(TriangleMesh& mesh) {
   return report;
 }
 
-TriangleMesh load_scene_mesh(const std::string& path_or_builtin, SceneShape& shape, std::vector<std::string>* notes) {
+std::optional<ValidatedMesh> try_validate(TriangleMesh mesh, SceneValidationReport& report) {
+  report = validate_scene(mesh);
+  if (!report.valid) return std::nullopt;
+  return ValidatedMesh(std::move(mesh), report.shape);
+}
+
+ValidatedMesh validate_mesh(TriangleMesh mesh, std::vector<std::string>* notes) {
+  SceneValidationReport report;
+  const std::string source = mesh.source;
+  std::optional<ValidatedMesh> v = try_validate(std::move(mesh), report);
+  if (!v) throw MeshError(source + ": invalid scene: " + report.message);
+  if (notes)
+    for (const std::string& n : report.notes) notes->push_back(source + ": " + n);
+  return std::move(*v);
+}
+
+ValidatedMesh load_scene_mesh(const std::string& path_or_builtin, std::vector<std::string>* notes) {
   std::vector<std::string> local;
   TriangleMesh mesh = path_or_builtin.rfind("builtin:", 0) == 0 ? make_builtin(path_or_builtin.substr(8))
                                                                  : read_mesh(path_or_builtin, &local);
-  const SceneValidationReport report = validate_scene(mesh);
-  if (!report.valid) throw MeshError(mesh.source + ": invalid scene: " + report.message);
-  shape = report.shape;
+  std::vector<std::string> validation;
+  ValidatedMesh v = validate_mesh(std::move(mesh), &validation);
   if (notes) {
     notes->insert(notes->end(), local.begin(), local.end());
-    for (const std::string& n : report.notes) notes->push_back(mesh.source + ": " + n);
+    notes->insert(notes->end(), validation.begin(), validation.end());
   }
-  return mesh;
+  return v;
 }
 
 }  // namespace panelrad::geometry

@@ -33,11 +33,10 @@ std::vector<LevelMemoryEstimate> check_paper_cube_fits(const CubeRunOptions& opt
 
 namespace {
 
-RadiositySolverOptions level_options(const CubeRunOptions& options, int level) {
-  RadiositySolverOptions o;
+SolveOptions level_options(const CubeRunOptions& options, int level) {
+  SolveOptions o;
   o.level = level;
-  o.method = options.op.method;
-  o.manual = options.op;
+  o.op = options.op;
   o.tighten_on_failed_check = options.tighten_on_failed_check;
   o.solver = options.solver;  // tolerance <= 0: discretization_tolerance, per level
   o.fold_reflectivity = true;  // K_n with rho (31) in its rows, as in the paper's tables

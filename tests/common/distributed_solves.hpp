@@ -46,12 +46,12 @@ inline void expect_same_bits(const SolveBits& single, const SolveBits& shared, c
 }
 
 /// Level 3, the fast operator from eta 0.4, M 4, tightened by its self-check, solver `kind`.
-inline RadiositySolverOptions fast_level3(SolverKind kind, const Communicator* communicator) {
-  RadiositySolverOptions o;
+inline SolveOptions fast_level3(SolverKind kind, const Communicator* communicator) {
+  SolveOptions o;
   o.level = 3;
-  o.method = OperatorMethod::fast;
-  o.manual.eta = 0.4;
-  o.manual.degree = 4;
+  o.op.method = OperatorMethod::fast;
+  o.op.eta = 0.4;
+  o.op.degree = 4;
   o.tighten_on_failed_check = true;
   o.solver.kind = kind;
   o.communicator = communicator;
@@ -61,7 +61,7 @@ inline RadiositySolverOptions fast_level3(SolverKind kind, const Communicator* c
 /// The paper's cube (31) at level 3, rho folded into K_n; E manufactured from u = |x|^2.
 inline SolveBits paper_cube_solve(SolverKind kind, const Communicator* communicator) {
   const Scene scene = make_paper_cube_scene();
-  RadiositySolverOptions o = fast_level3(kind, communicator);
+  SolveOptions o = fast_level3(kind, communicator);
   o.fold_reflectivity = true;
   const RadiositySolver solver(scene, o);
   ChannelSolve r = solver.solve(0);
@@ -77,9 +77,7 @@ inline SolveBits paper_cube_solve(SolverKind kind, const Communicator* communica
 /// per facet, solved with V (occluded); the parameters chosen by probes.
 inline SolveBits room_scene_solve(SolverKind kind, const Communicator* communicator) {
   geometry::TriangleMesh mesh = room_with_box();
-  const geometry::SceneValidationReport report = geometry::validate_scene(mesh);
-  EXPECT_TRUE(report.valid) << report.message;
-  Scene scene(std::move(mesh), {"R", "G", "B"}, report.shape);
+  Scene scene(std::move(mesh), {"R", "G", "B"});
   for (std::size_t c = 0; c < 3; ++c) {
     std::vector<double> rho(static_cast<std::size_t>(scene.num_facets())), E(rho.size(), 0.0);
     for (std::size_t f = 0; f < rho.size(); ++f) rho[f] = 0.2 + 0.1 * static_cast<double>((f + c) % 6);

@@ -517,11 +517,11 @@ struct OracleRun {
 };
 
 /// Dense collocation with exact clipping, the iteration's tolerance 1e-13.
-inline RadiositySolverOptions oracle_solver_options(int level) {
-  RadiositySolverOptions o;
+inline SolveOptions oracle_solver_options(int level) {
+  SolveOptions o;
   o.level = level;
-  o.method = OperatorMethod::dense;
-  o.manual.method = OperatorMethod::dense;
+  o.op.method = OperatorMethod::dense;
+  o.op.method = OperatorMethod::dense;
   o.solver.tolerance = 1e-13;
   return o;
 }
@@ -544,17 +544,18 @@ inline OracleRun run_constant_oracle(TriangleMesh mesh, double c, int level,
     gap_term = 256 * std::numeric_limits<double>::epsilon() * largest / smallest_gap;
   }
   run.tolerance = oracle_tolerance(run.resolution, gap_term);
-  const geometry::SceneValidationReport report = geometry::validate_scene(mesh);
+  geometry::SceneValidationReport report;
+  std::optional<geometry::ValidatedMesh> validated = geometry::try_validate(std::move(mesh), report);
   run.valid = report.valid;
   run.rule = report.rule;
   run.message = report.message;
   run.notes = report.notes;
   if (!report.valid) return run;
   run.shape = report.shape;
-  run.n0 = static_cast<Index>(mesh.triangles.size());
+  run.n0 = static_cast<Index>(validated->mesh().triangles.size());
   if (level < 0) level = 4 * run.n0 <= max_elements ? 1 : 0;
   try {
-    Scene scene(std::move(mesh), {"value"}, report.shape);
+    Scene scene(std::move(*validated));
     run.closed = scene.closed();
     std::vector<double> r(static_cast<std::size_t>(scene.num_facets())), e(r.size());
     for (Index f = 0; f < scene.num_facets(); ++f) {

@@ -26,17 +26,21 @@ inline Scene reflecting_builtin(const std::string& spec, double rho = 0.5, doubl
 
 /// A general scene (validate_scene must accept it, and not as convex) with the given channels and
 /// rho and E on every facet of every channel (set per facet afterwards where a test needs it).
-inline Scene general_scene(geometry::TriangleMesh mesh, std::vector<std::string> channels = {"value"}, double rho = 0.5,
+inline Scene general_scene(geometry::ValidatedMesh mesh, std::vector<std::string> channels = {"value"}, double rho = 0.5,
                            double E = 1.0) {
-  const geometry::SceneValidationReport report = geometry::validate_scene(mesh);
-  EXPECT_TRUE(report.valid) << mesh.source << ": " << report.message;
-  EXPECT_EQ(report.shape, geometry::SceneShape::general) << mesh.source;
-  Scene scene(std::move(mesh), std::move(channels), report.shape);
+  EXPECT_EQ(mesh.shape(), geometry::SceneShape::general) << mesh.mesh().source;
+  Scene scene(std::move(mesh), std::move(channels));
   for (std::size_t c = 0; c < scene.num_channels(); ++c) {
     scene.set_reflectivity(rho, c);
     scene.set_emissivity(E, c);
   }
   return scene;
+}
+
+/// As above, for a mesh as read (validated here: geometry::validate_mesh).
+inline Scene general_scene(geometry::TriangleMesh mesh, std::vector<std::string> channels = {"value"}, double rho = 0.5,
+                           double E = 1.0) {
+  return general_scene(geometry::validate_mesh(std::move(mesh)), std::move(channels), rho, E);
 }
 
 /// The fast operator (section 4) with admissibility eta (41) and Taylor degree M (44).

@@ -100,9 +100,7 @@ TEST(RowPartition, FastProductCostsBalanceTheOperatorsWork) {
 // written; accepted to 2%.
 TEST(RowPartition, OccludedCostsMatchTheOperatorsWork) {
   geometry::TriangleMesh mesh = testing::room_with_box();
-  const geometry::SceneValidationReport report = geometry::validate_scene(mesh);
-  ASSERT_TRUE(report.valid) << report.message;
-  Scene scene(std::move(mesh), {"value"}, report.shape);
+  Scene scene(std::move(mesh));
   scene.set_reflectivity(0.5);  // rows with rho = 0 do no work
   const Collocation col(scene, 3);  // n = 1536, 6 blocks
   const auto occluders = scene_occluders(col.tree());

@@ -84,8 +84,7 @@ TEST(FacetPlanes, InvariantUnderPowerOfTwoScalingAndTranslation) {
 // (its coordinates have one decimal: coplanar facets are so to the rounding of 0.1, ~1e-13 here,
 // and distinct planes are millimetres apart), and the light lies in the ceiling's plane.
 TEST(FacetPlanes, CornellBoxLightInTheCeilingPlane) {
-  pg::SceneShape shape;
-  const pg::TriangleMesh m = pg::load_scene_mesh(kScenes + "cornell_box.obj", shape);
+  const pg::TriangleMesh m = pg::load_scene_mesh(kScenes + "cornell_box.obj").mesh();
   const std::vector<Index> plane = pg::facet_planes(m);
   ASSERT_EQ(plane.size(), static_cast<std::size_t>(m.num_facets));
   std::size_t together = 0;
@@ -145,8 +144,7 @@ TEST(FacetPlanes, OppositeFacesAcrossAGapAreNeverOnePlane) {
 // general scenes) finds the planes that grouping within the rounding found, so its solution is
 // the same bit for bit.
 TEST(FacetPlanes, CornellBoxPlanesAreExact) {
-  pg::SceneShape shape;
-  const pg::TriangleMesh m = pg::load_scene_mesh(kScenes + "cornell_box.obj", shape);
+  const pg::TriangleMesh m = pg::load_scene_mesh(kScenes + "cornell_box.obj").mesh();
   EXPECT_EQ(pg::facet_planes(m, pg::PlaneGrouping::exact), pg::facet_planes(m, pg::PlaneGrouping::within_rounding));
 }
 

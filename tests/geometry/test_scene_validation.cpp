@@ -662,24 +662,26 @@ TEST(SceneValidation, BadInputIsRefusedAsOnTheConvexPath) {
 }
 
 TEST(SceneValidation, LoadSceneMesh) {
-  pg::SceneShape shape = pg::SceneShape::general;
   std::vector<std::string> notes;
-  const pg::TriangleMesh cube = pg::load_scene_mesh("builtin:cube", shape, &notes);
-  EXPECT_EQ(shape, pg::SceneShape::convex);
+  const pg::ValidatedMesh cube_scene = pg::load_scene_mesh("builtin:cube", &notes);
+  const pg::TriangleMesh& cube = cube_scene.mesh();
+  EXPECT_EQ(cube_scene.shape(), pg::SceneShape::convex);
   EXPECT_EQ(cube.triangles, pg::load_closed_convex("builtin:cube").triangles);
   // A convex file: the convex path, as load_closed_convex, notes included.
   std::vector<std::string> scene_notes, convex_notes;
-  const pg::TriangleMesh box = pg::load_scene_mesh(kMeshes + "cube.off", shape, &scene_notes);
+  const pg::ValidatedMesh box_scene = pg::load_scene_mesh(kMeshes + "cube.off", &scene_notes);
+  const pg::TriangleMesh& box = box_scene.mesh();
   const pg::TriangleMesh same = pg::load_closed_convex(kMeshes + "cube.off", &convex_notes);
-  EXPECT_EQ(shape, pg::SceneShape::convex);
+  EXPECT_EQ(box_scene.shape(), pg::SceneShape::convex);
   EXPECT_EQ(box.vertices, same.vertices);
   EXPECT_EQ(box.triangles, same.triangles);
   EXPECT_EQ(scene_notes, convex_notes);
   // The measured Cornell box (file comments): open at the front, blocks without bottom on the
   // uncut floor; floor front up (+y), the light (face 7) front down.
   notes.clear();
-  const pg::TriangleMesh cornell = pg::load_scene_mesh(kScenes + "cornell_box.obj", shape, &notes);
-  EXPECT_EQ(shape, pg::SceneShape::general);
+  const pg::ValidatedMesh cornell_scene = pg::load_scene_mesh(kScenes + "cornell_box.obj", &notes);
+  const pg::TriangleMesh& cornell = cornell_scene.mesh();
+  EXPECT_EQ(cornell_scene.shape(), pg::SceneShape::general);
   ASSERT_EQ(cornell.triangles.size(), 48u);
   ASSERT_FALSE(notes.empty());
   EXPECT_CONTAINS(notes.back(), "cornell_box.obj: piece");
@@ -694,12 +696,11 @@ TEST(SceneValidation, LoadSceneMesh) {
     }
   }
   for (const std::string mesh : {"l_block.off", "open_box.off"}) {
-    pg::load_scene_mesh(kMeshes + mesh, shape);
-    EXPECT_EQ(shape, pg::SceneShape::general) << mesh;
+    EXPECT_EQ(pg::load_scene_mesh(kMeshes + mesh).shape(), pg::SceneShape::general) << mesh;
   }
   // Two crossing squares: refused, naming both faces and a point of x = 0.5, z = 0, y in [0.2, 0.8].
   try {
-    pg::load_scene_mesh(std::string(PANELRAD_SOURCE_DIR) + "/tests/data/meshes/crossing_faces.off", shape);
+    pg::load_scene_mesh(std::string(PANELRAD_SOURCE_DIR) + "/tests/data/meshes/crossing_faces.off");
     ADD_FAILURE() << "crossing faces accepted";
   } catch (const pg::MeshError& e) {
     const std::string msg = e.what();
@@ -710,7 +711,7 @@ TEST(SceneValidation, LoadSceneMesh) {
     EXPECT_TRUE(x.y() >= 0.2 && x.y() <= 0.8) << msg;
   }
   try {
-    pg::load_scene_mesh("builtin:nothing", shape);
+    pg::load_scene_mesh("builtin:nothing");
     ADD_FAILURE() << "unknown built-in accepted";
   } catch (const pg::MeshError&) {
   }

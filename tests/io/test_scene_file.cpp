@@ -16,7 +16,19 @@
 
 namespace fs = std::filesystem;
 using panelrad::Scene;
-using panelrad::load_channel_scene;
+using panelrad::load_scene;
+using panelrad::LoadOptions;
+
+namespace {
+/// load_scene with a materials path and read limits, as the scene-file tests give them.
+panelrad::Scene load_channel_scene(const std::string& path, const std::string& materials = "",
+                                   const panelrad::TextReadOptions& read = {}) {
+  LoadOptions options;
+  options.materials_path = materials;
+  options.read = read;
+  return load_scene(path, options);
+}
+}  // namespace
 using panelrad::SceneFileError;
 
 namespace {

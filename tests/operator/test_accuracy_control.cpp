@@ -105,7 +105,7 @@ TEST(AccuracyControl, IcosahedronWithRho09StaysWithinFivePercent) {
   const int level = 3;  // n = 1280
   const Scene scene = uniform_scene({0.6, 0.3, 0.9}, {0.4, 1.4, 0.2});
   const double scale = discretization_error_scale(scene.mesh(), level);
-  RadiositySolverOptions o;
+  SolveOptions o;
   o.level = level;
   const SceneSolution sol = solve_scene(scene, o);
   ASSERT_EQ(sol.channels.size(), 3u);
@@ -118,10 +118,10 @@ TEST(AccuracyControl, IcosahedronWithRho09StaysWithinFivePercent) {
     EXPECT_LE(max_deviation(sol, c, u[c]), 0.05 * scale * u[c]) << "channel " << c << ", " << sol.method;
 
   // The same check fails for the former choice at this size (eta 0.5, M 6): it can fail.
-  RadiositySolverOptions old = o;
-  old.method = OperatorMethod::fast;
-  old.manual.eta = 0.5;
-  old.manual.degree = 6;
+  SolveOptions old = o;
+  old.op.method = OperatorMethod::fast;
+  old.op.eta = 0.5;
+  old.op.degree = 6;
   const SceneSolution loose = solve_scene(uniform_scene({0.9}, {0.2}), old);
   EXPECT_GT(max_deviation(loose, 0, 2.0), 0.05 * scale * 2.0);
   EXPECT_GT(loose.self_check_error, sol.self_check_threshold);  // and its self-check says so
@@ -131,7 +131,7 @@ TEST(AccuracyControl, IcosahedronWithRho099StaysWithinFivePercent) {
   const int level = 3;
   const Scene scene = uniform_scene({0.99}, {0.02});  // u = 2
   const double scale = discretization_error_scale(scene.mesh(), level);
-  RadiositySolverOptions o;
+  SolveOptions o;
   o.level = level;
   const SceneSolution sol = solve_scene(scene, o);
   ASSERT_GE(sol.self_check_error, 0) << sol.method;

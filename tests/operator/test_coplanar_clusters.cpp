@@ -77,8 +77,7 @@ TEST(CoplanarClusters, SplitFacetsSkipTheWholePlane) {
 // of its own plane, and skipped_coplanar counts, per row, the roots in P's plane (counted here
 // from the geometry in double precision).
 TEST(CoplanarClusters, OccludedRootsInThePlaneOfPAreSkippedAndCounted) {
-  geometry::SceneShape shape;
-  const Scene scene = panelrad::testing::general_scene(geometry::load_scene_mesh(kScenes + "cornell_box.obj", shape));
+  const Scene scene = panelrad::testing::general_scene(geometry::load_scene_mesh(kScenes + "cornell_box.obj"));
   const Collocation col(scene, 1);
   const geometry::ClusterTree& tree = col.tree();
   FastOptions o;

@@ -42,10 +42,8 @@ using geometry::SceneShape;
 /// A validated general scene with rho and E per facet from functions of the facet.
 Scene general_scene(geometry::TriangleMesh mesh, const std::function<double(Index)>& rho,
                     const std::function<double(Index)>& E) {
-  const geometry::SceneValidationReport report = geometry::validate_scene(mesh);
-  EXPECT_TRUE(report.valid) << mesh.source << ": " << report.message;
-  EXPECT_EQ(report.shape, SceneShape::general) << mesh.source;
-  Scene scene(std::move(mesh), {"value"}, report.shape);
+  Scene scene(std::move(mesh));
+  EXPECT_EQ(scene.shape(), SceneShape::general) << scene.mesh().source;
   std::vector<double> r(static_cast<std::size_t>(scene.num_facets())), e(r.size());
   for (Index f = 0; f < scene.num_facets(); ++f) {
     r[static_cast<std::size_t>(f)] = rho(f);
@@ -132,10 +130,9 @@ TEST(OccludedSolve, ConstantSolutionInClosedEnclosures) {
     const Scene scene = general_scene(std::move(mesh), facet_rho, [&](Index f) { return c * (1 - facet_rho(f)); });
     for (const OperatorMethod method : {OperatorMethod::dense, OperatorMethod::fast}) {
       SCOPED_TRACE(name + ", " + to_string(method));
-      RadiositySolverOptions o;
+      SolveOptions o;
       o.level = 2;
-      o.method = method;
-      o.manual = method == OperatorMethod::dense ? dense_options() : fast_options(0.4, 8);
+      o.op = method == OperatorMethod::dense ? dense_options() : fast_options(0.4, 8);
       o.solver.tolerance = 1e-13;
       const RadiositySolver solver(scene, o);
       EXPECT_EQ(solver.info().visibility, Visibility::occluded);
@@ -170,10 +167,9 @@ TEST(OccludedSolve, ShadowOfABlockerMatchesTheClosedForm) {
   EXPECT_FALSE(scene.closed());
   for (const OperatorMethod method : {OperatorMethod::dense, OperatorMethod::fast}) {
     for (int level = 1; level <= 3; ++level) {
-      RadiositySolverOptions o;
+      SolveOptions o;
       o.level = level;
-      o.method = method;
-      o.manual = method == OperatorMethod::dense ? dense_options() : fast_options(0.4, 8);
+      o.op = method == OperatorMethod::dense ? dense_options() : fast_options(0.4, 8);
       o.solver.tolerance = 1e-14;
       const RadiositySolver solver(scene, o);
       const ChannelSolve r = solver.solve(0);
@@ -213,7 +209,7 @@ TEST(OccludedConvex, ConvexScenesSkipVisibilityAndComputingItChangesNothing) {
   EXPECT_EQ(mesh.triangles, reference.triangles);
   Scene scene(mesh);
   scene.set_reflectivity(0.5);
-  RadiositySolverOptions o;
+  SolveOptions o;
   o.level = 2;
   const RadiositySolver automatic(scene, o);
   EXPECT_EQ(automatic.info().visibility, Visibility::unoccluded);
@@ -253,7 +249,7 @@ TEST(OccludedConvex, ConvexScenesSkipVisibilityAndComputingItChangesNothing) {
 // On a general scene V = 1 is refused, and so is a manufactured solution (integrated with V = 1).
 TEST(OccludedSolve, UnoccludedAndManufacturedAreRefusedOnGeneralScenes) {
   Scene scene = general_scene(testing::l_shaped_room(), facet_rho, [](Index) { return 1.0; });
-  RadiositySolverOptions o;
+  SolveOptions o;
   o.level = 0;
   o.visibility = Visibility::unoccluded;
   try {
@@ -346,10 +342,9 @@ TEST(OccludedSolve, EnergyBalanceOfAClosedSceneShrinksWithN) {
   const Scene scene = general_scene(testing::room_with_box(), facet_rho, [](Index f) { return f == 5 ? 1.0 : 0.0; });
   double previous = 1;
   for (int level = 0; level <= 3; ++level) {
-    RadiositySolverOptions o;
+    SolveOptions o;
     o.level = level;
-    o.method = OperatorMethod::dense;
-    o.manual = dense_options();
+    o.op = dense_options();
     o.solver.tolerance = 1e-12;
     const SceneSolution s = solve_scene(scene, o);
     ASSERT_EQ(s.channels.size(), 1u);

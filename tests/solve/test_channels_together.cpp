@@ -58,11 +58,11 @@ void expect_together_is_alone(const RadiositySolver& solver, const std::vector<s
 
 TEST(ChannelsTogether, NeumannChannelsBitForBit) {
   const Scene scene = three_channel_room();
-  RadiositySolverOptions o;
+  SolveOptions o;
   o.level = 2;
-  o.method = OperatorMethod::fast;
-  o.manual.eta = 0.4;
-  o.manual.degree = 4;
+  o.op.method = OperatorMethod::fast;
+  o.op.eta = 0.4;
+  o.op.degree = 4;
   o.solver.kind = SolverKind::neumann;
   const RadiositySolver solver(scene, o);
   expect_together_is_alone(solver, {0, 1, 2});
@@ -93,9 +93,9 @@ void expect_automatic_within_bounds(const RadiositySolver& solver, const std::ve
 
 TEST(ChannelsTogether, AutomaticAndGmresChannels) {
   const Scene scene = three_channel_room();
-  RadiositySolverOptions o;
+  SolveOptions o;
   o.level = 1;
-  o.method = OperatorMethod::dense;
+  o.op.method = OperatorMethod::dense;
   const RadiositySolver automatic(scene, o);  // the room's measured ratio ~0.4: Neumann together
   expect_automatic_within_bounds(automatic, {0, 1, 2}, "channels together (block products); measured ratio");
   o.solver.kind = SolverKind::gmres;  // solved one by one
@@ -114,9 +114,9 @@ TEST(ChannelsTogether, AutomaticHandsSlowChannelsToGmres) {
     E[c] = 1.0;
     scene.set_emissivity(E, c);
   }
-  RadiositySolverOptions o;
+  SolveOptions o;
   o.level = 1;
-  o.method = OperatorMethod::dense;
+  o.op.method = OperatorMethod::dense;
   const RadiositySolver automatic(scene, o);
   expect_automatic_within_bounds(automatic, {0, 1, 2}, "auto: Neumann for 3 steps, then GMRES");
   o.solver.kind = SolverKind::neumann;
@@ -127,9 +127,9 @@ TEST(ChannelsTogether, AutomaticHandsSlowChannelsToGmres) {
 
 TEST(ChannelsTogether, NotConvergedKeepsItsMessage) {
   const Scene scene = three_channel_room();
-  RadiositySolverOptions o;
+  SolveOptions o;
   o.level = 1;
-  o.method = OperatorMethod::dense;
+  o.op.method = OperatorMethod::dense;
   o.solver.kind = SolverKind::neumann;
   o.solver.max_iterations = 3;
   const RadiositySolver solver(scene, o);
@@ -142,7 +142,7 @@ TEST(ChannelsTogether, NotConvergedKeepsItsMessage) {
 
 TEST(ChannelsTogether, FoldedReflectivityHasNoH) {
   const Scene cube = testing::reflecting_builtin("cube");
-  RadiositySolverOptions o;
+  SolveOptions o;
   o.level = 1;
   o.fold_reflectivity = true;
   const RadiositySolver solver(cube, o);
@@ -155,18 +155,18 @@ TEST(ChannelsTogether, FoldedReflectivityHasNoH) {
 // probe's, bit for bit.
 TEST(ChannelsTogether, OccludedSettingChosenOnProbes) {
   const Scene scene = three_channel_room();
-  RadiositySolverOptions o;
+  SolveOptions o;
   o.level = 3;
-  o.method = OperatorMethod::fast;
-  o.manual.eta = 0.5;
-  o.manual.degree = 3;
+  o.op.method = OperatorMethod::fast;
+  o.op.eta = 0.5;
+  o.op.degree = 3;
   o.tighten_on_failed_check = true;
   const RadiositySolver solver(scene, o);
   const RadiositySolverInfo& info = solver.info();
   ASSERT_TRUE(info.self_check.has_value());
   EXPECT_EQ(info.tightened, 1);
   EXPECT_LE(info.self_check->relative_error, info.self_check_threshold);
-  OperatorOptions first = o.manual;
+  OperatorOptions first = o.op;
   first.method = OperatorMethod::fast;
   const std::vector<OperatorOptions> candidates = stricter_settings(first);
   ASSERT_NE(std::find(candidates.begin(), candidates.end(), solver.parameters()), candidates.end());
@@ -198,11 +198,11 @@ TEST(ChannelsTogether, OccludedSettingChosenOnProbes) {
 // the stricter settings were probed (M <= 2 here, far from the accuracy asked at n = 1536).
 TEST(ChannelsTogether, NoProbedSettingPassesSaysSo) {
   const Scene scene = three_channel_room();
-  RadiositySolverOptions o;
+  SolveOptions o;
   o.level = 3;
-  o.method = OperatorMethod::fast;
-  o.manual.eta = 0.5;
-  o.manual.degree = 0;
+  o.op.method = OperatorMethod::fast;
+  o.op.eta = 0.5;
+  o.op.degree = 0;
   o.tighten_on_failed_check = true;
   const RadiositySolver solver(scene, o);
   const RadiositySolverInfo& info = solver.info();

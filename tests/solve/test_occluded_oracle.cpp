@@ -195,10 +195,11 @@ void expect_direct_lighting(TriangleMesh mesh, int axis, double receiver_plane, 
                             const std::function<bool(const Vec3&, const Vec3&, const Vec3&)>& emitter, int level) {
   const std::string what = mesh.source;
   const int u = axis == 0 ? 1 : 0, v = axis == 2 ? 1 : 2;  // the axes of the planes
-  const geometry::SceneValidationReport report = geometry::validate_scene(mesh);
-  ASSERT_TRUE(report.valid) << what << ": " << report.message;
-  const std::vector<bool> receiver = testing::facets_on_plane(mesh, axis, receiver_plane);
-  const std::vector<bool> lamp = testing::facets_where(mesh, emitter);
+  geometry::SceneValidationReport report;
+  std::optional<geometry::ValidatedMesh> validated = geometry::try_validate(std::move(mesh), report);
+  ASSERT_TRUE(validated) << what << ": " << report.message;
+  const std::vector<bool> receiver = testing::facets_on_plane(validated->mesh(), axis, receiver_plane);
+  const std::vector<bool> lamp = testing::facets_where(validated->mesh(), emitter);
   ASSERT_GT(std::count(lamp.begin(), lamp.end(), true), 0) << what << ": no emitter facet";
   const double rho_r = 0.55;
   std::vector<double> rho(receiver.size()), E(receiver.size());
@@ -206,10 +207,10 @@ void expect_direct_lighting(TriangleMesh mesh, int axis, double receiver_plane, 
     rho[f] = receiver[f] ? rho_r : 0.0;
     E[f] = lamp[f] ? 1.0 : 0.0;
   }
-  Scene scene(std::move(mesh), {"value"}, report.shape);
+  Scene scene(std::move(*validated));
   scene.set_reflectivity(rho);
   scene.set_emissivity(E);
-  RadiositySolverOptions o = testing::oracle_solver_options(level);
+  SolveOptions o = testing::oracle_solver_options(level);
   o.solver.tolerance = 1e-14;
   const RadiositySolver solver(scene, o);
   const ChannelSolve r = solver.solve(0);

@@ -64,7 +64,7 @@ void at_points(const RadiositySolver& solver, const FacetData& d, Eigen::VectorX
 // operators may then differ by the float rounding, 2^-24 ~ 6e-8 relative per coefficient, so the
 // solutions by at most about 6e-8 rho/(1 - rho) ||u|| (1e-7 ||u|| here, rho <= 0.5) beside their
 // iteration errors.
-void expect_reuse_matches_one_shot(const RadiositySolverOptions& options, bool bit_identical) {
+void expect_reuse_matches_one_shot(const SolveOptions& options, bool bit_identical) {
   const Scene geometry_only(valid_cube());  // rho 0, E 1: only its surface is used
   const RadiositySolver solver(geometry_only, options);
   for (const FacetData& d : kData) {
@@ -88,18 +88,18 @@ void expect_reuse_matches_one_shot(const RadiositySolverOptions& options, bool b
 }  // namespace
 
 TEST(RadiositySolver, SeveralRightHandSidesEqualOneShotSolvesDense) {
-  RadiositySolverOptions o;
+  SolveOptions o;
   o.level = 2;  // n = 192: dense
-  o.method = OperatorMethod::dense;
+  o.op.method = OperatorMethod::dense;
   expect_reuse_matches_one_shot(o, true);
 }
 
 TEST(RadiositySolver, SeveralRightHandSidesEqualOneShotSolvesFast) {
-  RadiositySolverOptions o;
+  SolveOptions o;
   o.level = 3;  // n = 768
-  o.method = OperatorMethod::fast;
-  o.manual.eta = 0.5;
-  o.manual.degree = 4;
+  o.op.method = OperatorMethod::fast;
+  o.op.eta = 0.5;
+  o.op.degree = 4;
   expect_reuse_matches_one_shot(o, false);
 }
 
@@ -110,7 +110,7 @@ TEST(RadiositySolver, ChannelSolveIsTheSceneChannel) {
     scene.set_emissivity(kData[c % 2].E, c);
   }
   scene.set_emissivity([](const Vec3& P, Index) { return 1 + P.x() * P.y(); }, 2);  // E as a function
-  RadiositySolverOptions o;
+  SolveOptions o;
   o.level = 2;
   // One iteration for both (the automatic choice differs between one channel, GMRES, and several
   // stepped together, Neumann: ChannelsTogether tests it).
@@ -140,7 +140,7 @@ TEST(RadiositySolver, ReflectivityAsAFunction) {
   Scene scene(valid_cube());
   scene.set_reflectivity([](const Vec3& P, Index) { return 0.3 + 0.4 * P.x() * P.z(); });
   scene.set_emissivity(kData[0].E);
-  RadiositySolverOptions o;
+  SolveOptions o;
   o.level = 2;
   const RadiositySolver solver(scene, o);
   const Eigen::VectorXd& rho = solver.collocation().reflectivity();
@@ -162,7 +162,7 @@ TEST(RadiositySolver, ReflectivityAsAFunction) {
 // reported as converged; the one-shot solve keeps it too, warns, and require_converged throws.
 TEST(RadiositySolver, NotConvergedKeepsTheIterate) {
   const Scene scene = scalar_scene(kData[0]);
-  RadiositySolverOptions o;
+  SolveOptions o;
   o.level = 2;
   o.solver.kind = SolverKind::neumann;
   o.solver.tolerance = 1e-14;
@@ -179,7 +179,7 @@ TEST(RadiositySolver, NotConvergedKeepsTheIterate) {
   EXPECT_NE(r.message.find("did not reach the tolerance"), std::string::npos) << r.message;
   // The converged answer differs from the 5-step iterate by about the reported bound: more than
   // the tolerance, and within the bound's factor (the ratio estimate (36) is an estimate).
-  RadiositySolverOptions full = o;
+  SolveOptions full = o;
   full.solver.max_iterations = 1000;
   const ChannelSolve done = RadiositySolver(scene, full).solve(0);
   ASSERT_TRUE(done.converged()) << done.message;
@@ -191,9 +191,9 @@ TEST(RadiositySolver, NotConvergedKeepsTheIterate) {
   EXPECT_EQ(sol.channels[0].status, SolveStatus::not_converged);
   EXPECT_TRUE((sol.channels[0].radiosity.array() == r.u.array()).all());
   ASSERT_FALSE(sol.warnings.empty());
-  EXPECT_THROW(require_converged(sol), SolverError);
+  EXPECT_THROW(sol.require_converged(), SolverError);
   try {
-    require_converged(sol);
+    sol.require_converged();
   } catch (const SolverError& e) {
     EXPECT_EQ(std::string(e.what()), r.message);
   }
@@ -204,11 +204,11 @@ TEST(RadiositySolver, NotConvergedKeepsTheIterate) {
 // and the final parameters agree with tighten_parameters applied that many times.
 TEST(RadiositySolver, FastSelfCheckAndTightenCount) {
   const Scene cube = make_paper_cube_scene();
-  RadiositySolverOptions o;
+  SolveOptions o;
   o.level = 3;
-  o.method = OperatorMethod::fast;
-  o.manual.eta = 0.5;
-  o.manual.degree = 1;
+  o.op.method = OperatorMethod::fast;
+  o.op.eta = 0.5;
+  o.op.degree = 1;
   o.fold_reflectivity = true;
   {
     const RadiositySolver loose(cube, o);  // manual: checked, not tightened
@@ -226,14 +226,14 @@ TEST(RadiositySolver, FastSelfCheckAndTightenCount) {
   EXPECT_GT(solver.info().tightened, 0);
   EXPECT_LE(solver.self_check()->relative_error, solver.info().self_check_threshold);
   EXPECT_EQ(solver.info().self_check_threshold, self_check_threshold(problem_size(cube.mesh(), 3), 0.5));
-  OperatorOptions expected = o.manual;
+  OperatorOptions expected = o.op;
   expected.method = OperatorMethod::fast;
   for (int k = 0; k < solver.info().tightened; ++k) expected = tighten_parameters(expected);
   EXPECT_EQ(solver.parameters(), expected);
   EXPECT_TRUE(solver.info().warnings.empty());
 
   // Automatic parameters at n = 3072 (the cube's rho_max 0.5): the rule's choice passes its check.
-  RadiositySolverOptions a;
+  SolveOptions a;
   a.level = 4;
   a.fold_reflectivity = true;
   const RadiositySolver automatic(cube, a);
@@ -246,7 +246,7 @@ TEST(RadiositySolver, FastSelfCheckAndTightenCount) {
 // With rho folded into the operator's rows, only that rho can be solved, and there is no H.
 TEST(RadiositySolver, FoldedReflectivityRefusesOtherData) {
   const Scene cube = make_paper_cube_scene();
-  RadiositySolverOptions o;
+  SolveOptions o;
   o.level = 1;
   o.fold_reflectivity = true;
   const RadiositySolver solver(cube, o);
@@ -318,7 +318,7 @@ using testing::refusal;
 // tests/scene/test_scene.cpp).
 TEST(RadiositySolver, OneValidatorForFunctionsAtCollocationPoints) {
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
-  RadiositySolverOptions o;
+  SolveOptions o;
   o.level = 1;
   for (const double bad : {1.0, -0.1, nan}) {
     Scene scene(valid_cube(), {"R", "G"});

@@ -55,9 +55,9 @@ void expect_constant_solution(const std::string& method, int levels) {
       s.rho[ch][f] = 0.1 + 0.15 * static_cast<double>((f + 2 * ch) % 5);  // 0.1 .. 0.7
       s.emission[ch][f] = c[ch] * (1 - s.rho[ch][f]);
     }
-  RadiositySolverOptions o;
+  SolveOptions o;
   o.level = levels;
-  o.method = parse_operator_method(method);
+  o.op.method = parse_operator_method(method);
   o.solver.tolerance = 1e-12;
   const SceneSolution sol = solve_scene(s.scene(), o);
   ASSERT_EQ(sol.channels.size(), 3u);
@@ -110,7 +110,7 @@ TEST(SceneSolver, IdenticalChannelsSolvedOnceAndDarkChannelIsZero) {
     s.emission[ch][0] = 1.0;
   }
   for (double& r : s.rho[2]) r = 0.3;  // no emission in B
-  RadiositySolverOptions o;
+  SolveOptions o;
   o.level = 1;
   const SceneSolution sol = solve_scene(s.scene(), o);
   EXPECT_EQ(sol.channels[1].shared_with, "R");
@@ -139,7 +139,7 @@ void expect_energy_balance_shrinks(geometry::TriangleMesh mesh, int first, int l
     }
   double previous = 1;
   for (int level = first; level <= last; ++level) {
-    RadiositySolverOptions o;
+    SolveOptions o;
     o.level = level;
     o.solver.tolerance = 1e-12;
     const SceneSolution sol = solve_scene(s.scene(), o);
@@ -170,8 +170,8 @@ TEST(SceneSolver, RefusesBadReflectivityAndSizes) {
   s.emission[0][2] = std::nan("");
   EXPECT_THROW(solve_scene(s.scene()), std::invalid_argument);
   s.emission[0][2] = 1;
-  RadiositySolverOptions o;
-  o.method = OperatorMethod::dense;
+  SolveOptions o;
+  o.op.method = OperatorMethod::dense;
   o.level = 9;  // n = 12 * 4^9 = 3.1e6: a 79 TB matrix, refused before any work
   EXPECT_ANY_THROW(solve_scene(s.scene(), o));
   EXPECT_EQ(level_for_max_elements(12, 20000), 5);

@@ -6,6 +6,8 @@
 #include <panelrad/geometry/scene_validation.hpp>
 #include <panelrad/io/scene_file.hpp>
 
+#include "scene_file_internal.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -29,8 +31,7 @@ namespace fs = std::filesystem;
 
 // A scene file's data as it is read; a Scene once complete (to_scene).
 struct SceneData {
-  geometry::TriangleMesh mesh;
-  geometry::SceneShape shape = geometry::SceneShape::convex;
+  std::optional<geometry::ValidatedMesh> mesh;  // set by load_mesh
   std::vector<std::string> channels;
   std::vector<std::vector<double>> rho, emission;  // [channel][facet], checked as read
   std::vector<std::string> facet_material;
@@ -38,7 +39,7 @@ struct SceneData {
 };
 
 Scene to_scene(SceneData&& data) {
-  Scene scene(std::move(data.mesh), std::move(data.channels), data.shape);
+  Scene scene(std::move(*data.mesh), std::move(data.channels));
   for (std::size_t c = 0; c < data.rho.size(); ++c) {
     scene.set_reflectivity(std::move(data.rho[c]), c);
     scene.set_emissivity(std::move(data.emission[c]), c);
@@ -122,12 +123,11 @@ std::string join_from(const std::vector<std::string>& tokens, std::size_t first)
 /// Checks one value of rho or E; returns what is wrong, or "" when fine.
 std::string value_problem(bool is_rho, double v) { return is_rho ? reflectivity_problem(v) : emission_problem(v); }
 
-/// Reads and validates the mesh as a scene (geometry::validate_scene: convex, or general with its
-/// visibility computed; `shape` says which); notes get the reader's and the validator's notes. For
-/// an OBJ, `materials` (when given) gets its mtllib and per-face usemtl statements.
-geometry::TriangleMesh load_mesh(const std::string& path, std::vector<std::string>& notes,
-                                 const TextReadOptions& options, geometry::SceneShape& shape,
-                                 geometry::ObjMaterialUse* materials = nullptr) {
+/// Reads and validates the mesh as a scene (geometry::try_validate: convex, or general with its
+/// visibility computed); notes get the reader's and the validator's notes. For an OBJ,
+/// `materials` (when given) gets its mtllib and per-face usemtl statements.
+geometry::ValidatedMesh load_mesh(const std::string& path, std::vector<std::string>& notes,
+                                  const TextReadOptions& options, geometry::ObjMaterialUse* materials = nullptr) {
   geometry::TriangleMesh mesh;
   try {
     mesh = materials ? geometry::read_obj_with_materials(path, *materials, &notes, options)
@@ -135,11 +135,11 @@ geometry::TriangleMesh load_mesh(const std::string& path, std::vector<std::strin
   } catch (const geometry::MeshError& e) {
     throw SceneFileError(e.what());
   }
-  const geometry::SceneValidationReport report = geometry::validate_scene(mesh);
-  if (!report.valid) fail(path, 0, "invalid scene mesh: " + report.message);
-  shape = report.shape;
+  geometry::SceneValidationReport report;
+  std::optional<geometry::ValidatedMesh> validated = geometry::try_validate(std::move(mesh), report);
+  if (!validated) fail(path, 0, "invalid scene mesh: " + report.message);
   for (const std::string& n : report.notes) notes.push_back(path + ": " + n);
-  return mesh;
+  return std::move(*validated);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -319,7 +319,7 @@ void check_material_values(const Material& m, const std::string& name, const std
 /// rho and E of every facet in channels R, G, B, from its usemtl material's Kd and Ke.
 void assign_materials(SceneData& scene, const geometry::ObjMaterialUse& use, const MaterialLibrary& library,
                       const std::string& path) {
-  const auto nf = static_cast<std::size_t>(scene.mesh.num_facets);
+  const auto nf = static_cast<std::size_t>(scene.mesh->mesh().num_facets);
   scene.channels = {"R", "G", "B"};
   scene.rho.assign(3, std::vector<double>(nf, 0.0));
   scene.emission.assign(3, std::vector<double>(nf, 0.0));
@@ -348,8 +348,8 @@ void assign_materials(SceneData& scene, const geometry::ObjMaterialUse& use, con
 SceneData load_obj_scene(const std::string& path, const TextReadOptions& options) {
   SceneData scene;
   geometry::ObjMaterialUse use;  // mtllib and per-face usemtl, as the reader counted the faces
-  scene.mesh = load_mesh(path, scene.notes, options, scene.shape, &use);
-  check_face_materials(use, static_cast<std::size_t>(scene.mesh.num_facets), path);
+  scene.mesh = load_mesh(path, scene.notes, options, &use);
+  check_face_materials(use, static_cast<std::size_t>(scene.mesh->mesh().num_facets), path);
   const std::vector<std::pair<std::string, long>> libraries = mtl_libraries(use, path);
   const MaterialLibrary library = read_materials(libraries, path, scene.notes, options);
   assign_materials(scene, use, library, path);
@@ -731,8 +731,8 @@ void assign_facet_values(SceneData& scene, const FacetEntries& entries, const De
 SceneData load_off_scene(const std::string& path, const std::string& materials_path,
                             const TextReadOptions& options) {
   SceneData scene;
-  scene.mesh = load_mesh(path, scene.notes, options, scene.shape);
-  const auto nf = static_cast<std::size_t>(scene.mesh.num_facets);
+  scene.mesh = load_mesh(path, scene.notes, options);
+  const auto nf = static_cast<std::size_t>(scene.mesh->mesh().num_facets);
   const std::string file = sidecar_path(path, materials_path);
   JsonLayout layout;
   const Json doc = read_sidecar(file, path, options, layout);

@@ -98,11 +98,22 @@ bool every_edge_shared_twice(const geometry::TriangleMesh& mesh) {
 
 }  // namespace
 
-Scene::Scene(geometry::TriangleMesh validated_mesh, std::vector<std::string> channels)
-    : Scene(std::move(validated_mesh), std::move(channels), geometry::SceneShape::convex) {}
+Scene::Validated Scene::validate(geometry::TriangleMesh mesh) {
+  std::vector<std::string> notes;
+  geometry::ValidatedMesh v = geometry::validate_mesh(std::move(mesh), &notes);
+  return {std::move(v), std::move(notes)};
+}
 
-Scene::Scene(geometry::TriangleMesh validated_mesh, std::vector<std::string> channels, geometry::SceneShape shape)
-    : mesh_(std::move(validated_mesh)), channels_(std::move(channels)), shape_(shape) {
+Scene::Scene(geometry::TriangleMesh mesh, std::vector<std::string> channels)
+    : Scene(validate(std::move(mesh)), std::move(channels)) {}
+
+Scene::Scene(Validated validated, std::vector<std::string> channels)
+    : Scene(std::move(validated.mesh), std::move(channels)) {
+  notes_ = std::move(validated.notes);
+}
+
+Scene::Scene(geometry::ValidatedMesh mesh, std::vector<std::string> channels)
+    : shape_(mesh.shape()), mesh_(std::move(mesh).take_mesh()), channels_(std::move(channels)) {
   if (mesh_.triangles.empty()) throw std::invalid_argument("scene: empty mesh");
   if (channels_.empty()) throw std::invalid_argument("scene: no channels");
   for (std::size_t c = 0; c < channels_.size(); ++c) {
@@ -116,12 +127,6 @@ Scene::Scene(geometry::TriangleMesh validated_mesh, std::vector<std::string> cha
     ch.rho_facet.assign(static_cast<std::size_t>(mesh_.num_facets), 0.0);
     ch.e_facet.assign(static_cast<std::size_t>(mesh_.num_facets), 1.0);
   }
-}
-
-Scene Scene::load(const std::string& path_or_builtin, std::vector<std::string>* notes) {
-  geometry::SceneShape shape = geometry::SceneShape::convex;
-  geometry::TriangleMesh mesh = geometry::load_scene_mesh(path_or_builtin, shape, notes);
-  return Scene(std::move(mesh), {"value"}, shape);
 }
 
 const Scene::Channel& Scene::channel(std::size_t c) const {

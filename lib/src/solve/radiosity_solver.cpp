@@ -50,7 +50,7 @@ std::string number(double v) {
 
 }  // namespace
 
-RadiositySolver::RadiositySolver(const Scene& scene, const RadiositySolverOptions& options)
+RadiositySolver::RadiositySolver(const Scene& scene, const SolveOptions& options)
     : scene_(scene), options_(options) {
   try {
     setup();
@@ -100,12 +100,11 @@ void RadiositySolver::setup() {
 // made for rho_max 0 (the loosest automatic parameters: a lower bound) and made again after it.
 void RadiositySolver::choose_parameters_and_plan() {
   const double rho_max = std::isnan(info_.conditioning_reflectivity) ? 0.0 : info_.conditioning_reflectivity;
-  if (options_.method == OperatorMethod::automatic) {
+  if (options_.op.method == OperatorMethod::automatic) {
     info_.parameters = choose_parameters(problem_size(scene_.mesh(), info_.level), 0.05, rho_max, info_.visibility);
-    info_.parameters.local = options_.manual.local;  // target clusters on or off, as asked
+    info_.parameters.local = options_.op.local;  // target clusters on or off, as asked
   } else {
-    info_.parameters = options_.manual;
-    info_.parameters.method = options_.method;
+    info_.parameters = options_.op;
   }
   LevelMemoryOptions memory;
   // fold: the collocation's rho, E (and u); else also the unit-weight copy's.
@@ -234,7 +233,7 @@ void RadiositySolver::build_operator() {
                                  : std::optional<Collocation>(collocation_->with_row_weights(Eigen::VectorXd::Ones(info_.n)));
   const Collocation& rows = unit ? *unit : *collocation_;
   OperatorOptions& op = info_.parameters;
-  const bool tighten = options_.method == OperatorMethod::automatic || options_.tighten_on_failed_check;
+  const bool tighten = options_.op.method == OperatorMethod::automatic || options_.tighten_on_failed_check;
   if (op.method == OperatorMethod::fast)
     info_.self_check_threshold =
         self_check_threshold(problem_size(scene_.mesh(), info_.level), info_.conditioning_reflectivity);

@@ -3,6 +3,7 @@
 #include <panelrad/scene/errors.hpp>
 #include <panelrad/support/resources.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -146,11 +147,11 @@ void channel_warnings(const ChannelSolution& ch, SceneSolution& out) {
 
 }  // namespace
 
-SceneSolution solve_scene(const Scene& scene, const RadiositySolverOptions& options) {
+SceneSolution solve_scene(const Scene& scene, const SolveOptions& options) {
   if (options.fold_reflectivity)
     throw std::invalid_argument("solve_scene: one operator H for every channel (fold_reflectivity must be false)");
   Stopwatch total;
-  RadiositySolverOptions o = options;
+  SolveOptions o = options;
   // Per element: the triangle, inner normal, centroid, area and facet of the output field, and
   // per channel rho, E, radiosity (twice: solution and field) and irradiance.
   o.result_bytes_per_element = sizeof(std::array<Vec3, 3>) + 2 * sizeof(Vec3) + sizeof(double) + sizeof(Index) +
@@ -204,9 +205,12 @@ SceneSolution solve_scene(const Scene& scene, const RadiositySolverOptions& opti
   return out;
 }
 
-void require_converged(const SceneSolution& solution) {
-  for (const ChannelSolution& ch : solution.channels)
-    if (ch.status != SolveStatus::converged) throw SolverError(ch.message);
+bool SceneSolution::converged() const {
+  return std::all_of(channels.begin(), channels.end(), [](const ChannelSolution& ch) { return ch.converged(); });
+}
+
+void SceneSolution::require_converged() const {
+  for (const ChannelSolution& ch : channels) ch.require_converged();
 }
 
 }  // namespace panelrad

@@ -104,8 +104,8 @@ const char* to_string(SolveStatus status) {
   return status == SolveStatus::converged ? "converged" : "not converged";
 }
 
-void require_converged(const SolveResult& result) {
-  if (result.status != SolveStatus::converged) throw SolverError(result.message);
+void IterationReport::require_converged() const {
+  if (status != SolveStatus::converged) throw SolverError(message);
 }
 
 const char* to_string(SolverKind kind) {

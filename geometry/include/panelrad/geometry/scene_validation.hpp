@@ -5,6 +5,7 @@
 #include <panelrad/geometry/validation.hpp>
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -91,10 +92,35 @@ struct SceneValidationReport {
 /// the convex path, where triangles run counter-clockwise seen from outside.
 SceneValidationReport validate_scene(TriangleMesh& mesh);
 
-/// Reads ("builtin:NAME" or an OFF/OBJ file, as load_closed_convex) and validates with
-/// validate_scene; throws MeshError with the report's message when invalid. `shape` receives the
-/// shape; notes (reader's and validation's) are appended to `notes` when given.
-TriangleMesh load_scene_mesh(const std::string& path_or_builtin, SceneShape& shape,
-                             std::vector<std::string>* notes = nullptr);
+/// A mesh that passed validate_scene, oriented as it decided (the storage convention above), with
+/// its shape. Only validate_mesh() and try_validate() make one, so whatever holds a ValidatedMesh (a
+/// Scene) knows its visibility policy: V = 1 only for a proven convex surface. Validating is not
+/// idempotent for general scenes (the stored triangles run clockwise seen from the front, the
+/// input's counter-clockwise), which is why the validated state is a type and not a flag.
+class ValidatedMesh {
+ public:
+  const TriangleMesh& mesh() const { return mesh_; }
+  SceneShape shape() const { return shape_; }
+  /// The mesh, leaving this object empty (for the Scene that takes it over).
+  TriangleMesh take_mesh() && { return std::move(mesh_); }
+
+ private:
+  ValidatedMesh(TriangleMesh mesh, SceneShape shape) : mesh_(std::move(mesh)), shape_(shape) {}
+  friend std::optional<ValidatedMesh> try_validate(TriangleMesh mesh, SceneValidationReport& report);
+
+  TriangleMesh mesh_;
+  SceneShape shape_;
+};
+
+/// validate_scene on a mesh as read (input convention: open faces counter-clockwise seen from
+/// their front); the report in `report`, and the validated mesh, or nullopt when invalid.
+std::optional<ValidatedMesh> try_validate(TriangleMesh mesh, SceneValidationReport& report);
+/// As try_validate, throwing MeshError ("<source>: invalid scene: <the report's message>") when
+/// invalid; the validation's notes, each prefixed by the mesh's source, are appended to `notes`.
+ValidatedMesh validate_mesh(TriangleMesh mesh, std::vector<std::string>* notes = nullptr);
+
+/// Reads ("builtin:NAME" or an OFF/OBJ file, as load_closed_convex) and validates (validate_mesh());
+/// notes (reader's and validation's) are appended to `notes` when given.
+ValidatedMesh load_scene_mesh(const std::string& path_or_builtin, std::vector<std::string>* notes = nullptr);
 
 }  // namespace panelrad::geometry

@@ -1,5 +1,5 @@
 #pragma once
-// Scene files for `panelrad solve`: a convex polyhedral scene with reflectivity rho and emission E
+// Scene files for `panelrad solve`: a polyhedral scene with reflectivity rho and emission E
 // per input facet (the data of the radiosity equation, paper (7)), in one or more colour channels.
 //   - OBJ + MTL: faces take the material of the last `usemtl`; materials come from the files named
 //     by `mtllib` (relative to the OBJ's folder). Kd "r g b" -> rho (3 channels R, G, B), Ke "r g b"
@@ -42,12 +42,26 @@
 
 namespace panelrad {
 
-/// Loads SCENE (.obj with its MTL files, or .off with its JSON sidecar), by extension
-/// (case-insensitive). `materials_path` overrides the sidecar's path (OFF only; empty: default).
-/// `options` sets the size limit of every file read (mesh, MTL, JSON).
-/// Returns a Scene with the file's channels, rho and E per facet, its notes and (OBJ) the
-/// material of each facet. Throws SceneFileError (never a partial scene).
-Scene load_channel_scene(const std::string& path, const std::string& materials_path = "",
-                         const TextReadOptions& options = {});
+/// What load_scene reads beside the scene file.
+struct LoadOptions {
+  /// OFF: the JSON sidecar's path (empty: the OFF's path with extension .json).
+  std::string materials_path;
+  /// Read the mesh only (OFF or OBJ, no MTL or sidecar): one channel "value", rho = 0 and E = 1
+  /// on every facet, to be set in code (Scene::set_reflectivity, set_emissivity).
+  bool geometry_only = false;
+  /// The size limit of every file read (mesh, MTL, JSON).
+  TextReadOptions read;
+};
+
+/// Loads a scene, validated (geometry::validated), whatever its format:
+///   - "builtin:NAME" (cube, prism:K, tetrahedron, octahedron): geometry only, as above;
+///   - SCENE.obj with its MTL files, or SCENE.off with its JSON sidecar, by extension
+///     (case-insensitive): the file's channels, rho and E per facet, its notes and (OBJ) the
+///     material of each facet;
+///   - with options.geometry_only, the mesh of an OFF or OBJ file alone.
+/// The scene's shape (convex: V = 1; general: V computed) comes from the validation. Throws
+/// SceneFileError (a scene file or its materials), MeshError (the mesh, builtin or geometry
+/// only), TextFileError; never returns a partial scene.
+Scene load_scene(const std::string& path, const LoadOptions& options = {});
 
 }  // namespace panelrad

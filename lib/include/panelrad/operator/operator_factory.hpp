@@ -15,7 +15,7 @@
 namespace panelrad {
 
 /// How K_n v is computed. automatic: the measured rule of auto_parameters.hpp (a solver
-/// object's choice, RadiositySolverOptions); dense: the matrix (33); fast: section 4.
+/// object's choice, SolveOptions); dense: the matrix (33); fast: section 4.
 enum class OperatorMethod { automatic, dense, fast };
 /// "auto" | "dense" | "fast".
 const char* to_string(OperatorMethod method);

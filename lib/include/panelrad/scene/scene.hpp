@@ -1,5 +1,5 @@
 #pragma once
-// A polyhedral scene: a validated set of planar polygons (geometry::validate_scene: a closed convex
+// A polyhedral scene: a validated set of planar polygons (geometry::validate_mesh: a closed convex
 // surface, the paper's setting, or a general scene whose visibility V(P, Q) is computed) with, in
 // each of C channels (C = 1 for a
 // scalar problem; "R", "G", "B" for a colour one), the reflectivity rho and the emission E of the
@@ -44,16 +44,14 @@ std::string emission_problem(double e);
 
 class Scene {
  public:
-  /// Takes a mesh that passed geometry::validate_closed_convex (outward oriented), with the
-  /// channels' names (at least one, distinct, non-empty). Reflectivity defaults to 0 and
-  /// emission to 1 everywhere in every channel.
-  explicit Scene(geometry::TriangleMesh validated_mesh, std::vector<std::string> channels = {"value"});
-  /// Takes a mesh that passed geometry::validate_scene with the shape it found: convex (V = 1,
-  /// the paper's setting) or general (the solver computes V(P, Q)).
-  Scene(geometry::TriangleMesh validated_mesh, std::vector<std::string> channels, geometry::SceneShape shape);
-  /// Reads and validates (geometry::load_scene_mesh) a mesh file, or "builtin:NAME" (cube, prism:K,
-  /// tetrahedron, octahedron): convex scenes and general ones.
-  static Scene load(const std::string& path_or_builtin, std::vector<std::string>* notes = nullptr);
+  /// Takes a validated mesh (geometry::validate_mesh, geometry::load_scene_mesh, load_scene) with the
+  /// channels' names (at least one, distinct, non-empty); its shape is the visibility policy:
+  /// convex (V = 1, the paper's setting) or general (the solver computes V(P, Q)). Reflectivity
+  /// defaults to 0 and emission to 1 everywhere in every channel.
+  explicit Scene(geometry::ValidatedMesh mesh, std::vector<std::string> channels = {"value"});
+  /// Validates `mesh` as read (geometry::validate_mesh: MeshError naming the rule and the faces when
+  /// it is invalid), keeps the validation's notes, and takes it as above.
+  explicit Scene(geometry::TriangleMesh mesh, std::vector<std::string> channels = {"value"});
 
   const geometry::TriangleMesh& mesh() const { return mesh_; }
   /// convex: proven by the exact check, V = 1 and no visibility work; general: V is computed.
@@ -114,6 +112,13 @@ class Scene {
   void set_facet_material(std::vector<std::string> per_facet);
 
  private:
+  struct Validated {
+    geometry::ValidatedMesh mesh;
+    std::vector<std::string> notes;
+  };
+  static Validated validate(geometry::TriangleMesh mesh);
+  Scene(Validated validated, std::vector<std::string> channels);
+
   struct Channel {
     std::vector<double> rho_facet, e_facet;  // empty when the function is set
     SurfaceFunction rho_fn, e_fn;
@@ -121,9 +126,9 @@ class Scene {
   const Channel& channel(std::size_t c) const;
   Channel& channel(std::size_t c);
 
+  geometry::SceneShape shape_ = geometry::SceneShape::convex;
   geometry::TriangleMesh mesh_;
   std::vector<std::string> channels_;
-  geometry::SceneShape shape_ = geometry::SceneShape::convex;
   bool closed_ = true;
   std::vector<Channel> data_;
   SurfaceFunction solution_;

@@ -12,7 +12,7 @@
 //      visibility), rho_max the largest reflectivity over all channels (the conditioning
 //      1 / (1 - rho_max) of every channel's equation, (11)), visibility the resolved line of sight
 //      (dense where the far field would be no cheaper than the matrix); dense or fast:
-//      options.manual;
+//      options.op;
 //   3. the memory plan (memory_plan.hpp): a level that cannot fit is refused (ResourceError,
 //      with the estimate) before anything is built;
 //   4. the collocation (22): the elements of the level-L refinement, rho and E of channel 0 at
@@ -73,15 +73,17 @@ class ScaledOperator final : public RadiosityOperator {
   Eigen::VectorXd scale_;
 };
 
-struct RadiositySolverOptions {
+struct SolveOptions {
   int level = -1;                        ///< refinement level; < 0: the largest with n <= max_elements
   geometry::Index max_elements = 20000;  ///< used when level < 0 (level 0 at least)
-  /// automatic: the measured rule of auto_parameters.hpp, self-checked and tightened; dense or
-  /// fast: `manual`.
-  OperatorMethod method = OperatorMethod::automatic;
-  /// Near rule, eta and M when method is dense or fast (manual.method is replaced by `method`).
-  /// Its `local` (the target clusters' local expansions) applies to automatic parameters too.
-  OperatorOptions manual;
+  /// The operator, one struct: op.method automatic (the default) takes the measured rule of
+  /// auto_parameters.hpp, self-checked and tightened, keeping op.local (the target clusters'
+  /// local expansions on or off); dense or fast take op's near rule, eta and M as given.
+  OperatorOptions op = [] {
+    OperatorOptions o;
+    o.method = OperatorMethod::automatic;
+    return o;
+  }();
   /// Fast method with manual parameters: tighten them after a failed self-check, as automatic
   /// parameters always are (step 6).
   bool tighten_on_failed_check = false;
@@ -112,18 +114,11 @@ struct RadiositySolverOptions {
 };
 
 /// One solve of (32).
-struct ChannelSolve {
-  SolveStatus status = SolveStatus::converged;
-  std::string message;         ///< not converged: the SolverError text (require_converged)
+struct ChannelSolve : IterationReport {
   Eigen::VectorXd u;           ///< u_n at the collocation points; the last iterate when not converged
-  std::string solver;          ///< what ran, with the automatic choice's reason
-  int iterations = 0;          ///< products with K_n
-  double error_estimate = 0;   ///< the iteration's bound on ||u_n - u||_inf (+inf: none yet)
-  double residual = 0;         ///< ||E - (I - K) u||_inf / ||E||_inf
   double convergence_ratio = 0;  ///< Neumann: (36)
   double seconds = 0;
   Eigen::VectorXd irradiance;  ///< H u, the light arriving (the product without rho): solve_channels only
-  bool converged() const { return status == SolveStatus::converged; }
 };
 
 /// What the setup did.
@@ -152,11 +147,11 @@ class RadiositySolver {
   /// Setup (header). Keeps a reference to `scene`: it must outlive the solver. Throws
   /// std::invalid_argument (bad options or data, naming them), ResourceError (a size that does not
   /// fit, before any work, or an allocation that failed, naming the stage).
-  explicit RadiositySolver(const Scene& scene, const RadiositySolverOptions& options = {});
+  explicit RadiositySolver(const Scene& scene, const SolveOptions& options = {});
   /// A temporary scene would not outlive the solver.
-  RadiositySolver(Scene&&, const RadiositySolverOptions& = {}) = delete;
+  RadiositySolver(Scene&&, const SolveOptions& = {}) = delete;
 
-  const RadiositySolverOptions& options() const { return options_; }
+  const SolveOptions& options() const { return options_; }
   const RadiositySolverInfo& info() const { return info_; }
   int level() const { return info_.level; }
   geometry::Index n() const { return info_.n; }
@@ -207,7 +202,7 @@ class RadiositySolver {
   void say(const std::string& line) const;
 
   const Scene& scene_;
-  RadiositySolverOptions options_;
+  SolveOptions options_;
   RadiositySolverInfo info_;
   std::optional<Collocation> collocation_;
   std::unique_ptr<RadiosityOperator> op_;

@@ -15,16 +15,10 @@
 namespace panelrad {
 
 /// One channel's answer and its energy balance.
-struct ChannelSolution {
+struct ChannelSolution : IterationReport {
   std::string name;
-  SolveStatus status = SolveStatus::converged;
-  std::string message;         ///< not converged: the SolverError text (require_converged)
   Eigen::VectorXd radiosity;   ///< u_n at the collocation points (the last iterate when not converged)
   Eigen::VectorXd irradiance;  ///< H u_n: the light arriving at P_i (the product without rho)
-  std::string solver;          ///< what ran, with the automatic choice's reason
-  int iterations = 0;
-  double residual = 0;         ///< ||E - (I - K) u||_inf / ||E||_inf
-  double error_estimate = 0;   ///< solver's bound on ||u_n - u^(k)||_inf
   std::string shared_with;     ///< non-empty: identical data to this channel, solution copied
   /// Energy balance: emitted power sum A_i E_i against absorbed power sum A_i (1 - rho_i) H_i.
   /// Equal in a closed scene (every ray from a front side hits a face); in an open one the
@@ -57,16 +51,17 @@ struct SceneSolution {
   std::vector<ChannelSolution> channels;
   std::vector<std::string> warnings;   ///< e.g. an energy mismatch far above its expected size
   ElementField field;                  ///< everything the output writers need
+  /// Every channel converged.
+  bool converged() const;
+  /// Throws SolverError with the message of the first channel that did not converge.
+  void require_converged() const;
 };
 
 /// Discretizes, builds one operator, solves every channel and checks the energy balance.
 /// options.fold_reflectivity must be false (one H for every channel). Throws
 /// std::invalid_argument (bad options), ResourceError (a size that does not fit). A channel
 /// whose iteration does not converge keeps its last iterate, with its status and message, and a
-/// warning; require_converged(solution) throws its SolverError.
-SceneSolution solve_scene(const Scene& scene, const RadiositySolverOptions& options = {});
-
-/// Throws SolverError with the message of the first channel that did not converge.
-void require_converged(const SceneSolution& solution);
+/// warning; solution.require_converged() throws its SolverError.
+SceneSolution solve_scene(const Scene& scene, const SolveOptions& options = {});
 
 }  // namespace panelrad

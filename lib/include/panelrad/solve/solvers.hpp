@@ -50,22 +50,28 @@ struct SolverOptions {
 enum class SolveStatus { converged, not_converged };
 const char* to_string(SolveStatus status);  ///< "converged" | "not converged"
 
-struct SolveResult {
+/// What every solve reports, the base of each result (SolveResult, ChannelSolve, ChannelSolution):
+/// whether it converged, what ran and how far it got.
+struct IterationReport {
   SolveStatus status = SolveStatus::converged;
   std::string message;             ///< not_converged: what was not reached, and how far it got
-  Eigen::VectorXd u;
-  std::string solver;              ///< the solver that ran
-  std::string choice;              ///< why it was chosen (automatic choice), else empty
+  std::string solver;              ///< the solver that ran (with the automatic choice's reason where one was made)
   int iterations = 0;              ///< products with K_n
-  double convergence_ratio = 0;    ///< Neumann: ratio (36), estimated by successive differences
-  std::vector<double> ratio_history;
-  double error_estimate = 0;       ///< bound on ||u_n - u||_inf from the iteration
+  double error_estimate = 0;       ///< bound on ||u_n - u||_inf from the iteration (+inf: none yet)
   double residual = 0;             ///< ||E - (I - K) u||_inf / ||E||_inf, one extra product
-  double seconds = 0;
+  bool converged() const { return status == SolveStatus::converged; }
+  /// Throws SolverError(message) when the iteration did not converge.
+  void require_converged() const;
 };
 
-/// Throws SolverError(result.message) when the result did not converge.
-void require_converged(const SolveResult& result);
+/// One iteration's answer (solve_neumann, solve_gmres, solve_lu, solve).
+struct SolveResult : IterationReport {
+  Eigen::VectorXd u;
+  std::string choice;              ///< why the solver was chosen (automatic choice), else empty
+  double convergence_ratio = 0;    ///< Neumann: ratio (36), estimated by successive differences
+  std::vector<double> ratio_history;
+  double seconds = 0;
+};
 
 /// The solvers return their last iterate when they stop at max_iterations (status
 /// not_converged); an iterate that is not finite is a SolverError.

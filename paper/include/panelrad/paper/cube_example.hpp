@@ -24,9 +24,9 @@ struct CubeRunOptions {
   SolverOptions solver;
   /// Fast method: when the operator's self-check exceeds self_check_threshold(), tighten the
   /// parameters (tighten_parameters) and rebuild, until it passes or nothing is stricter
-  /// (RadiositySolverOptions::tighten_on_failed_check).
+  /// (SolveOptions::tighten_on_failed_check).
   bool tighten_on_failed_check = false;
-  /// The processes sharing each level's rows (RadiositySolverOptions::communicator; nullptr: one).
+  /// The processes sharing each level's rows (SolveOptions::communicator; nullptr: one).
   const Communicator* communicator = nullptr;
 };
 
