@@ -70,8 +70,9 @@ bool is_room(const ElementField& field) {
 /// an open side (the Cornell box's front) lacks the opening's face, whose inner normal points
 /// into the room, so sum area n points out through the opening: the eye goes there, level with
 /// the room's centre unless the opening faces up or down. A closed room (the sum below 2% of the
-/// area) is seen through the wall opposite the one that shows the most light of the four
-/// directions across up (ties: the first of -b, -a, b, a).
+/// area) is seen through one of its walls: the eye goes along the one of the four directions
+/// across up whose far walls (front sides towards the eye) show the most light (ties: the first
+/// of -b, -a, b, a).
 Vec3 room_view(const ElementField& field, const Vec3& up) {
   Vec3 open = Vec3::Zero();
   double area = 0;

@@ -46,10 +46,11 @@ struct RenderOptions {
   /// view_direction): z for the built-in scenes, y for the Cornell box's data.
   geometry::Vec3 up = geometry::Vec3::UnitZ();
   /// Choose the viewpoint from the scene instead of view_direction: a room (its walls' front
-  /// sides facing inward) in perspective from in front of its open side, or for a closed room
-  /// from outside its brightest wall's opposite wall with that wall left out (its back side faces
-  /// the eye), looking at the lit interior; any other scene orthographically along the brightest
-  /// of the eight diagonals, as brightest_view_direction() in the scene's upright frame.
+  /// sides facing inward) in perspective from in front of its open side, level with its centre,
+  /// looking in; a closed room likewise from outside one of its walls, which is left out (the eye
+  /// sees its back side), on the side across `up` whose far walls show the most light; any other
+  /// scene (bodies seen from outside) orthographically along the brightest of the eight
+  /// diagonals, as brightest_view_direction() but about the chosen `up`.
   bool view_from_scene = false;
   /// Choose `up` from the scene: y when the lights face along the y axis (the data's y up, as the
   /// Cornell box's), otherwise z.
