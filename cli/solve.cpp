@@ -42,7 +42,9 @@ const char* kSolveUsage =
     "  --max-elements N (default 20000) takes the largest level with n <= N. Writes PREFIX.csv\n"
     "  (per-element radiosity), PREFIX.ply (per-face colours), PREFIX.vtk (ParaView) and PREFIX.png\n"
     "  (a cut-away picture seen from --view, the direction from the scene towards the viewer;\n"
-    "  default: the brightest diagonal; --up: the scene's upward direction, default 0,0,1); PREFIX\n"
+    "  default: a room from in front of its open side or through a wall, looking at the lit\n"
+    "  interior, a body from its brightest diagonal; --up: the scene's upward direction, default\n"
+    "  y when the lights face along y, else z); PREFIX\n"
     "  defaults to the scene's name with '_radiosity' in\n"
     "  the current directory. Progress goes to stderr\n"
     "  (--quiet: none); a summary with the energy balance to stdout.\n";
@@ -85,7 +87,7 @@ struct SolveCommandLine {
   int threads = 0;
   std::set<std::string> wanted;  // from formats
   std::optional<geometry::Vec3> view;  // --view: the PNG's direction towards the viewer
-  geometry::Vec3 up = geometry::Vec3::UnitZ();  // --up: the PNG's upward direction
+  std::optional<geometry::Vec3> up;  // --up: the PNG's upward direction
 };
 
 /// --view X,Y,Z: three finite numbers, not all 0; what is wrong, or "".
@@ -152,7 +154,11 @@ void add_solve_options(CLI::App& app, SolveCommandLine& line) {
      })
       ->type_name("X,Y,Z")
       ->check([](const std::string& v) { return view_problem(v, nullptr); });
-  app.add_option_function<std::string>("--up", [&line](const std::string& v) { (void)view_problem(v, &line.up); })
+  app.add_option_function<std::string>("--up", [&line](const std::string& v) {
+       geometry::Vec3 u;
+       (void)view_problem(v, &u);
+       line.up = u;
+     })
       ->type_name("X,Y,Z")
       ->check([](const std::string& v) { return view_problem(v, nullptr); });
   app.add_flag("--quiet", line.quiet);

@@ -54,6 +54,7 @@ TEST_F(Outputs, EachFileIsWhatItsWriterGives) {
   s.require_converged();
   OutputOptions view;
   view.view_direction = geometry::Vec3(-1, -1.7, 1.2);
+  view.up = geometry::Vec3::UnitZ();
   const std::string prefix = (dir_ / "box").string();
   const std::vector<std::string> written = write_outputs(s, prefix, {"png", "csv", "vtk", "ply"}, view);
   ASSERT_EQ(written, (std::vector<std::string>{prefix + ".csv", prefix + ".ply", prefix + ".vtk", prefix + ".png"}));
@@ -62,7 +63,7 @@ TEST_F(Outputs, EachFileIsWhatItsWriterGives) {
   EXPECT_EQ(contents(prefix + ".vtk"), radiosity_vtk(s.field));
   RenderOptions render;
   render.view_direction = *view.view_direction;
-  render.up = view.up;
+  render.up = *view.up;
   EXPECT_EQ(contents(prefix + ".png"), radiosity_png(s.field, render));
 }
 

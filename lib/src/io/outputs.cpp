@@ -35,9 +35,11 @@ std::vector<std::string> write_outputs(const SceneSolution& solution, const std:
     if (format == "ply") set.add(path, radiosity_ply(solution.field));
     if (format == "vtk") set.add(path, radiosity_vtk(solution.field));
     if (format == "png") {
-      RenderOptions view;
-      view.view_direction = options.view_direction ? *options.view_direction : brightest_view_direction(solution.field);
-      view.up = options.up;
+      RenderOptions view;  // what is not given is chosen from the scene
+      view.view_from_scene = !options.view_direction;
+      if (options.view_direction) view.view_direction = *options.view_direction;
+      view.up_from_scene = !options.up;
+      if (options.up) view.up = *options.up;
       set.add(path, radiosity_png(solution.field, view));
     }
   }

@@ -15,10 +15,12 @@ namespace panelrad {
 /// How the picture is taken (PNG only).
 struct OutputOptions {
   /// Direction from the scene's centre towards the viewer; none: chosen from the scene
-  /// (brightest_view_direction).
+  /// (RenderOptions::view_from_scene: a room from its open side or through a wall, a body from
+  /// outside).
   std::optional<geometry::Vec3> view_direction;
-  /// The scene's direction shown upwards on the screen.
-  geometry::Vec3 up = geometry::Vec3::UnitZ();
+  /// The scene's direction shown upwards on the screen; none: chosen from the scene
+  /// (RenderOptions::up_from_scene).
+  std::optional<geometry::Vec3> up;
 };
 
 /// The formats write_outputs knows, in writing order.

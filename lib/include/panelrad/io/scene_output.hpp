@@ -45,6 +45,16 @@ struct RenderOptions {
   /// The scene's direction shown upwards on the screen (need not be unit, nor orthogonal to
   /// view_direction): z for the built-in scenes, y for the Cornell box's data.
   geometry::Vec3 up = geometry::Vec3::UnitZ();
+  /// Choose the viewpoint from the scene instead of view_direction: a room (its walls' front
+  /// sides facing inward) in perspective from in front of its open side, level with its centre,
+  /// looking in; a closed room likewise from outside one of its walls, which is left out (the eye
+  /// sees its back side), on the side across `up` whose far walls show the most light; any other
+  /// scene (bodies seen from outside) orthographically along the brightest of the eight
+  /// diagonals, as brightest_view_direction() but about the chosen `up`.
+  bool view_from_scene = false;
+  /// Choose `up` from the scene: y when the lights face along the y axis (the data's y up, as the
+  /// Cornell box's), otherwise z.
+  bool up_from_scene = false;
 };
 
 /// Colour of each element as shown in the picture and the PLY: RGB scenes (3 channels named R, G,
@@ -59,10 +69,11 @@ std::vector<std::array<unsigned char, 3>> element_colours(const ElementField& fi
 /// deterministic. For a scene lit from its ceiling this looks up into the light.
 geometry::Vec3 brightest_view_direction(const ElementField& field);
 
-/// PNG picture of the scene: an orthographic cut-away view from outside along view_direction
-/// showing the faces whose front side (inner normal) looks at the viewer (a room's far walls, the
-/// near sides of the bodies in it), nearest first (a depth buffer), each element flat-coloured by
-/// element_colours(), with a colour bar for scalar scenes.
+/// PNG picture of the scene: an orthographic cut-away view from outside along view_direction (or
+/// the view chosen from the scene, view_from_scene) showing the faces whose front side (inner
+/// normal) looks at the viewer (a room's far walls, the near sides of the bodies in it), nearest
+/// first (a depth buffer), each element flat-coloured by element_colours(), with a colour bar for
+/// scalar scenes.
 void write_radiosity_png(const std::string& path, const ElementField& field, const RenderOptions& options = {});
 std::string radiosity_png(const ElementField& field, const RenderOptions& options = {});
 
