@@ -1,0 +1,37 @@
+# Checks that every relative link in README.md, docs/*.md and bench/results/*.md, [text](target) or
+# ![alt](target), names a file or folder that exists (relative to the page; an #anchor is cut off;
+# http(s):, mailto: and page-internal #anchors are not checked).
+# Run: cmake -DSOURCE_DIR=<project> -P check_links.cmake (fails listing every broken link).
+cmake_minimum_required(VERSION 3.20)
+if(NOT SOURCE_DIR)
+  message(FATAL_ERROR "check_links: set -DSOURCE_DIR")
+endif()
+file(GLOB pages "${SOURCE_DIR}/README.md" "${SOURCE_DIR}/docs/*.md" "${SOURCE_DIR}/bench/results/*.md")
+set(broken "")
+set(checked 0)
+foreach(page IN LISTS pages)
+  file(READ "${page}" text)
+  get_filename_component(dir "${page}" DIRECTORY)
+  file(RELATIVE_PATH page_name "${SOURCE_DIR}" "${page}")
+  # "](" becomes a marker first: an unbalanced ']' in a list item would join items.
+  string(REPLACE "](" "@LINK@" text "${text}")
+  string(REGEX MATCHALL "@LINK@[^)\n]+\\)" links "${text}")
+  foreach(link IN LISTS links)
+    string(REGEX REPLACE "^@LINK@([^)]*)\\)$" "\\1" target "${link}")
+    string(REGEX REPLACE "[ \t]+\"[^\"]*\"$" "" target "${target}")  # a "title"
+    string(STRIP "${target}" target)
+    if(target MATCHES "^(https?:|mailto:|#)" OR target STREQUAL "")
+      continue()
+    endif()
+    string(REGEX REPLACE "#.*$" "" path "${target}")
+    math(EXPR checked "${checked} + 1")
+    if(NOT EXISTS "${dir}/${path}")
+      list(APPEND broken "${page_name}: (${target})")
+    endif()
+  endforeach()
+endforeach()
+if(broken)
+  list(JOIN broken "\n  " listing)
+  message(FATAL_ERROR "check_links: links to files that do not exist:\n  ${listing}")
+endif()
+message(STATUS "check_links: ${checked} relative links checked, all exist")
