@@ -427,116 +427,125 @@ ChannelSolve RadiositySolver::solve_values(const Eigen::VectorXd& rho, const Eig
   return channel_solve(std::move(r));
 }
 
+// The Neumann channels of solve_channels: (I - diag(rho_c) H) u_c = E_c, each its own iteration.
+struct RadiositySolver::ChannelIteration {
+  std::size_t slot;
+  Eigen::VectorXd rho;
+  double max_rho;
+  NeumannIteration iteration;
+  Stopwatch clock;
+  bool handed = false;  // continued by GMRES (automatic)
+};
+
 std::vector<ChannelSolve> RadiositySolver::solve_channels(const std::vector<std::size_t>& channels) const {
   if (options_.fold_reflectivity)
     throw std::logic_error("solve_channels: the operator holds K_n = diag(rho) H (fold_reflectivity), not H");
   std::vector<ChannelSolve> out(channels.size());
-  // The Neumann channels: (I - diag(rho_c) H) u_c = E_c, each its own iteration.
-  struct Iterating {
-    std::size_t slot;
-    Eigen::VectorXd rho;
-    double max_rho;
-    NeumannIteration iteration;
-    Stopwatch clock;
-    bool handed = false;  // continued by GMRES (automatic)
-  };
-  std::vector<Iterating> group;
   // automatic with several channels: Neumann steps them together (one block product a pass), and
   // each channel is handed to GMRES once its measured ratio says that costs fewer products.
   const bool automatic = options_.solver.kind == SolverKind::automatic;
   const bool together = automatic && channels.size() >= 2;
+  std::vector<ChannelIteration> group;
   std::vector<std::string> labels(channels.size());
   for (std::size_t s = 0; s < channels.size(); ++s) {
     const Collocation::ChannelValues v = channel_values(channels[s]);
-    const std::string label = "channel " + scene_.channels()[channels[s]];
-    labels[s] = label;
+    labels[s] = "channel " + scene_.channels()[channels[s]];
     const double max_rho = v.rho.maxCoeff();
     const bool neumann = together ? std::isfinite(max_rho) : solver_kind(max_rho) == SolverKind::neumann;
     if (!neumann) {
-      out[s] = solve_values(v.rho, v.E, label);
+      out[s] = solve_values(v.rho, v.E, labels[s]);
       out[s].irradiance = irradiance(out[s].u);
       continue;
     }
     if (!v.E.allFinite()) throw std::invalid_argument("solver: right-hand side has NaN or Inf entries");
-    group.push_back({s, held(v.rho), max_rho, NeumannIteration(held(v.E), iteration_options(label)), Stopwatch()});
+    group.push_back({s, held(v.rho), max_rho, NeumannIteration(held(v.E), iteration_options(labels[s])), Stopwatch()});
   }
   stage_ = "solving " + std::to_string(group.size()) + " channels (32) together with neumann";
   stage_bytes_ = info_.memory.solver;
   try {
-    Eigen::MatrixXd V, Y;
-    std::vector<std::size_t> active;
-    const BlockedReductions sums(options_.communicator);
-    const auto finish = [&](Iterating& g) {
-      SolveResult r = g.iteration.release();
-      r.u = whole(r.u);
-      r.seconds = g.clock.seconds();
-      if (automatic)
-        r.choice = "auto: Neumann, " + std::to_string(group.size()) + " channels together (block products); " +
-                   fmt("measured ratio %.3g, ", r.convergence_ratio) + fmt("max rho %.3g", g.max_rho);
-      Eigen::VectorXd irradiance = std::move(out[g.slot].irradiance);
-      out[g.slot] = channel_solve(std::move(r));
-      out[g.slot].irradiance = std::move(irradiance);
-    };
-    for (Iterating& g : group)
-      if (g.iteration.finished()) {  // E = 0: u = 0 without a product
-        finish(g);
-        out[g.slot].irradiance = Eigen::VectorXd::Zero(info_.n);
-      }
-    // Neumann's remaining products (each a share of a block pass of `columns` columns) against
-    // GMRES's from the current iterate, both by expected_products with the measured ratio (36);
-    // GMRES continues the channel when it costs less.
-    const auto hand_over = [&](Iterating& g, std::size_t columns) {
-      const NeumannIteration& it = g.iteration;
-      const double u_norm = sums.inf_norm(it.next());
-      if (!(u_norm > 0)) return;
-      const double reduction = sums.inf_norm(it.step()) / u_norm;
-      const ExpectedProducts e = expected_products(it.ratio(), g.max_rho, info_.tolerance, reduction);
-      if (e.neumann <= 0 || e.gmres <= 0) return;
-      const double c = static_cast<double>(columns);
-      const double neumann_cost = e.neumann * (1 + kBlockColumnCost * (c - 1)) / c;
-      if (!(e.gmres < neumann_cost)) return;
-      const ScaledOperator K(*op_, g.rho);
-      Eigen::VectorXd previous = it.next() - it.step();  // u^(k), whose residual is the step
-      SolveResult r = solve_gmres_from(K, it.rhs(), iteration_options(labels[g.slot]), g.max_rho, std::move(previous),
-                                       it.step(), it.steps());
-      r.u = whole(r.u);
-      r.seconds = g.clock.seconds();
-      std::ostringstream why;
-      why << "auto: Neumann for " << it.steps() << " steps, then GMRES: measured ratio " << it.ratio()
-          << ", expected " << e.gmres << " more products against " << e.neumann << " Neumann steps in blocks of "
-          << columns << " (" << neumann_cost << " products' cost)";
-      r.choice = why.str();
-      out[g.slot] = channel_solve(std::move(r));
-      out[g.slot].irradiance = irradiance(out[g.slot].u);
-      g.handed = true;
-    };
-    for (;;) {
-      active.clear();
-      for (std::size_t j = 0; j < group.size(); ++j)
-        if (!group[j].iteration.finished() && !group[j].handed) active.push_back(j);
-      if (active.empty()) break;
-      V.resize(op_->size(), static_cast<Eigen::Index>(active.size()));
-      for (std::size_t a = 0; a < active.size(); ++a) V.col(static_cast<Eigen::Index>(a)) = group[active[a]].iteration.next();
-      op_->apply_block(V, Y);  // H v of every channel still iterating, in one pass
-      for (std::size_t a = 0; a < active.size(); ++a) {
-        Iterating& g = group[active[a]];
-        const bool last = g.iteration.awaiting_residual();
-        const Eigen::VectorXd Hv = Y.col(static_cast<Eigen::Index>(a));
-        const Eigen::VectorXd Kv = Hv.cwiseProduct(g.rho);  // (K v)_i = rho_i (H v)_i, (33)
-        g.iteration.take(Kv);
-        if (last) {
-          out[g.slot].irradiance = whole(Hv);  // H u of the final u: the light arriving
-          finish(g);
-        } else if (together && !g.iteration.finished() && !g.iteration.awaiting_residual() &&
-                   g.iteration.steps() == kStepsBeforeChoice) {
-          hand_over(g, active.size());
-        }
-      }
-    }
+    iterate_together(group, labels, together, out);
   } catch (const std::bad_alloc&) {
     throw ResourceError(out_of_memory_message(stage_, static_cast<double>(info_.n), stage_bytes_));
   }
   return out;
+}
+
+void RadiositySolver::finish_channel(ChannelIteration& g, std::size_t group_size, ChannelSolve& out) const {
+  SolveResult r = g.iteration.release();
+  r.u = whole(r.u);
+  r.seconds = g.clock.seconds();
+  if (options_.solver.kind == SolverKind::automatic)
+    r.choice = "auto: Neumann, " + std::to_string(group_size) + " channels together (block products); " +
+               fmt("measured ratio %.3g, ", r.convergence_ratio) + fmt("max rho %.3g", g.max_rho);
+  Eigen::VectorXd arriving = std::move(out.irradiance);
+  out = channel_solve(std::move(r));
+  out.irradiance = std::move(arriving);
+}
+
+// Neumann's remaining products (each a share of a block pass of `columns` columns) against GMRES's
+// from the current iterate, both by expected_products with the measured ratio (36); GMRES
+// continues the channel when it costs less.
+void RadiositySolver::hand_over(ChannelIteration& g, std::size_t columns, const std::string& label,
+                                const BlockedReductions& sums, ChannelSolve& out) const {
+  const NeumannIteration& it = g.iteration;
+  const double u_norm = sums.inf_norm(it.next());
+  if (!(u_norm > 0)) return;
+  const double reduction = sums.inf_norm(it.step()) / u_norm;
+  const ExpectedProducts e = expected_products(it.ratio(), g.max_rho, info_.tolerance, reduction);
+  if (e.neumann <= 0 || e.gmres <= 0) return;
+  const double c = static_cast<double>(columns);
+  const double neumann_cost = e.neumann * (1 + kBlockColumnCost * (c - 1)) / c;
+  if (!(e.gmres < neumann_cost)) return;
+  const ScaledOperator K(*op_, g.rho);
+  Eigen::VectorXd previous = it.next() - it.step();  // u^(k), whose residual is the step
+  SolveResult r =
+      solve_gmres_from(K, it.rhs(), iteration_options(label), g.max_rho, std::move(previous), it.step(), it.steps());
+  r.u = whole(r.u);
+  r.seconds = g.clock.seconds();
+  std::ostringstream why;
+  why << "auto: Neumann for " << it.steps() << " steps, then GMRES: measured ratio " << it.ratio() << ", expected "
+      << e.gmres << " more products against " << e.neumann << " Neumann steps in blocks of " << columns << " ("
+      << neumann_cost << " products' cost)";
+  r.choice = why.str();
+  out = channel_solve(std::move(r));
+  out.irradiance = irradiance(out.u);
+  g.handed = true;
+}
+
+// Every channel still iterating takes one Neumann step per pass over H (apply_block).
+void RadiositySolver::iterate_together(std::vector<ChannelIteration>& group, const std::vector<std::string>& labels,
+                                       bool together, std::vector<ChannelSolve>& out) const {
+  const BlockedReductions sums(options_.communicator);
+  for (ChannelIteration& g : group)
+    if (g.iteration.finished()) {  // E = 0: u = 0 without a product
+      finish_channel(g, group.size(), out[g.slot]);
+      out[g.slot].irradiance = Eigen::VectorXd::Zero(info_.n);
+    }
+  Eigen::MatrixXd V, Y;
+  std::vector<std::size_t> active;
+  for (;;) {
+    active.clear();
+    for (std::size_t j = 0; j < group.size(); ++j)
+      if (!group[j].iteration.finished() && !group[j].handed) active.push_back(j);
+    if (active.empty()) break;
+    V.resize(op_->size(), static_cast<Eigen::Index>(active.size()));
+    for (std::size_t a = 0; a < active.size(); ++a) V.col(static_cast<Eigen::Index>(a)) = group[active[a]].iteration.next();
+    op_->apply_block(V, Y);  // H v of every channel still iterating, in one pass
+    for (std::size_t a = 0; a < active.size(); ++a) {
+      ChannelIteration& g = group[active[a]];
+      const bool last = g.iteration.awaiting_residual();
+      const Eigen::VectorXd Hv = Y.col(static_cast<Eigen::Index>(a));
+      const Eigen::VectorXd Kv = Hv.cwiseProduct(g.rho);  // (K v)_i = rho_i (H v)_i, (33)
+      g.iteration.take(Kv);
+      if (last) {
+        out[g.slot].irradiance = whole(Hv);  // H u of the final u: the light arriving
+        finish_channel(g, group.size(), out[g.slot]);
+      } else if (together && !g.iteration.finished() && !g.iteration.awaiting_residual() &&
+                 g.iteration.steps() == kStepsBeforeChoice) {
+        hand_over(g, active.size(), labels[g.slot], sums, out[g.slot]);
+      }
+    }
+  }
 }
 
 }  // namespace panelrad

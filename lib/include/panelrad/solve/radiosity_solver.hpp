@@ -37,6 +37,7 @@
 // in a RowBlockOperator; the iterations run on those rows with the blocked reductions of
 // solvers.hpp, and the answers (u, H u) are gathered whole on every process: the same bits as one
 // process.
+#include <panelrad/distributed/blocked_reductions.hpp>
 #include <panelrad/distributed/row_block_operator.hpp>
 #include <panelrad/distributed/row_partition.hpp>
 #include <panelrad/operator/collocation.hpp>
@@ -200,6 +201,13 @@ class RadiositySolver {
   SolverOptions iteration_options(const std::string& label) const;
   SolverKind solver_kind(double max_rho) const;
   void say(const std::string& line) const;
+  // solve_channels, in steps: the Neumann channels iterated together, one block product a pass.
+  struct ChannelIteration;
+  void iterate_together(std::vector<ChannelIteration>& group, const std::vector<std::string>& labels, bool together,
+                        std::vector<ChannelSolve>& out) const;
+  void finish_channel(ChannelIteration& g, std::size_t group_size, ChannelSolve& out) const;
+  void hand_over(ChannelIteration& g, std::size_t columns, const std::string& label, const BlockedReductions& sums,
+                 ChannelSolve& out) const;
 
   const Scene& scene_;
   SolveOptions options_;
