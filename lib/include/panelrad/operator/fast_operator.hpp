@@ -11,6 +11,9 @@
 // An operator may own only the rows [begin, end) of K_n (FastOptions::rows): the coverings (42),
 // near field (43) and far coefficients (44)-(45) of those rows; the cluster moments (48) of a
 // product still need all of v.
+// Beside it: the self-check of any operator (self_check.hpp), the cost model of storing the far
+// coefficients (far_field_costs.hpp), and for the tests the coverings and moments as the operator
+// holds them (detail/fast_operator_testing.hpp).
 #include <panelrad/geometry/occluders.hpp>
 #include <panelrad/support/uninitialized_vector.hpp>
 #include <panelrad/operator/clustering_parameters.hpp>
