@@ -1,6 +1,6 @@
 // The self-check (self_check.hpp) as a component of its own, on any RadiosityOperator: the dense
 // matrix K_n of (33) agrees with the exact closed-form rows up to the rounding of its sums
-// (~1e-16 relative, far below any fast operator's error), a perturbed product is measured at its
+// (~1e-15 relative, far below any fast operator's error), a perturbed product is measured at its
 // perturbation, and the fast operator's check through its whole product apply() is, bit for bit,
 // the check it makes on the sampled rows alone (FastOperator::self_check).
 #include <panelrad/operator/collocation.hpp>
