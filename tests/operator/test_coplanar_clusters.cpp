@@ -3,6 +3,7 @@
 #include <panelrad/geometry/scene_validation.hpp>
 #include <panelrad/operator/collocation.hpp>
 #include <panelrad/operator/dense_operator.hpp>
+#include <panelrad/operator/detail/fast_operator_testing.hpp>
 #include <panelrad/operator/fast_operator.hpp>
 #include <panelrad/operator/operator_factory.hpp>
 #include <panelrad/scene/scene.hpp>
@@ -56,11 +57,11 @@ TEST(CoplanarClusters, SplitFacetsSkipTheWholePlane) {
   EXPECT_EQ(fa.statistics().near_pairs, fb.statistics().near_pairs);
   EXPECT_EQ(fa.statistics().skipped_coplanar, fb.statistics().skipped_coplanar);
   for (Index i = 0; i < a.size(); ++i) {
-    ASSERT_EQ(fa.far_clusters(i), fb.far_clusters(i)) << "row " << i;
-    ASSERT_EQ(fa.near_elements(i), fb.near_elements(i)) << "row " << i;
-    for (Index e : fb.near_elements(i)) ASSERT_FALSE(in_plane_of_row(b.tree(), i, e));
-    for (Index id : fb.far_clusters(i)) {
-      const auto [l, k] = fb.cluster_of_id(id);
+    ASSERT_EQ(detail::far_clusters(fa, i), detail::far_clusters(fb, i)) << "row " << i;
+    ASSERT_EQ(detail::near_elements(fa, i), detail::near_elements(fb, i)) << "row " << i;
+    for (Index e : detail::near_elements(fb, i)) ASSERT_FALSE(in_plane_of_row(b.tree(), i, e));
+    for (Index id : detail::far_clusters(fb, i)) {
+      const auto [l, k] = detail::cluster_of_id(fb, id);
       ASSERT_FALSE(in_plane_of_row(b.tree(), i, b.tree().first_element(l, k))) << "row " << i;
     }
   }
@@ -93,9 +94,9 @@ TEST(CoplanarClusters, OccludedRootsInThePlaneOfPAreSkippedAndCounted) {
       expected += coplanar;
       other_facet += coplanar && tree.cluster(0, r).facet != tree.elements()[static_cast<std::size_t>(i)].facet;
     }
-    for (Index e : fast.near_elements(i)) ASSERT_NE(tree.plane(L, e), tree.plane(L, i));
-    for (Index id : fast.far_clusters(i)) {
-      const auto [l, k] = fast.cluster_of_id(id);
+    for (Index e : detail::near_elements(fast, i)) ASSERT_NE(tree.plane(L, e), tree.plane(L, i));
+    for (Index id : detail::far_clusters(fast, i)) {
+      const auto [l, k] = detail::cluster_of_id(fast, id);
       ASSERT_NE(tree.plane(l, k), tree.plane(L, i)) << "row " << i;
     }
   }

@@ -13,6 +13,7 @@
 #include <panelrad/operator/collocation.hpp>
 #include <panelrad/operator/dense_operator.hpp>
 #include <panelrad/operator/far_field.hpp>
+#include <panelrad/operator/detail/fast_operator_testing.hpp>
 #include <panelrad/operator/fast_operator.hpp>
 #include <panelrad/scene/scene.hpp>
 
@@ -39,7 +40,7 @@ struct Setup {
       : scene(panelrad::testing::validated_builtin(builtin)),
         col(scene, level),
         op(col, options(degree)),
-        unit(FastOperator::far_field_unit(col.tree())) {}
+        unit(detail::far_field_unit(col.tree())) {}
   static FastOptions options(int degree) {
     FastOptions o;
     o.eta = 0.5;
@@ -64,7 +65,7 @@ void expect_moments_of_the_elements(const std::string& builtin, int level, int d
     const geometry::Cluster& c = tree.elements()[static_cast<std::size_t>(e)];
     const PlaneFrame frame = make_plane_frame(unit * c.centre, c.normal);
     triangle_moments(frame, unit * c.vertex[0], unit * c.vertex[1], unit * c.vertex[2], degree, exact.data());
-    const auto held = op.element_moments(e);
+    const auto held = detail::element_moments(op, e);
     ASSERT_EQ(held.size(), static_cast<std::size_t>(T));
     const double R = unit * c.radius;
     for (int k = 0; k <= degree; ++k)
@@ -89,14 +90,15 @@ void expect_expansion_centres(const std::string& builtin, int level) {
   for (int l = 0; l <= level; ++l)
     for (Index k = 0; k < tree.level_size(l); ++k) {
       const Vec3 exact = setup.unit * tree.cluster(l, k).centre;
-      const Vec3 used = setup.op.expansion_centre(setup.op.cluster_id(l, k));
+      const Vec3 used = detail::expansion_centre(setup.op, detail::cluster_id(setup.op, l, k));
       if (l < level) {
         ASSERT_EQ(used, exact) << builtin << " level " << l << " cluster " << k;
       } else {
         ASSERT_LE((used - exact).norm(), 1e-13) << builtin << " level " << l << " element " << k;
       }
     }
-  EXPECT_THROW((void)setup.op.expansion_centre(setup.op.cluster_id(level, tree.level_size(level))), std::out_of_range);
+  EXPECT_THROW((void)detail::expansion_centre(setup.op, detail::cluster_id(setup.op, level, tree.level_size(level))),
+               std::out_of_range);
 }
 
 TEST(ElementMoments, ExpansionCentresOfElementsFromTheirCentroids) {
@@ -130,7 +132,7 @@ void expect_moments_of_the_children(const std::string& builtin, int level, int d
   for (Index k = 0; k < tree.level_size(level - 1); ++k) {
     const geometry::Cluster& parent = tree.cluster(level - 1, k);
     const PlaneFrame frame = make_plane_frame(unit * parent.centre, parent.normal);
-    const auto held = setup.op.child_shape_moments(k);
+    const auto held = detail::child_shape_moments(setup.op, k);
     ASSERT_EQ(held.size(), 4 * T);
     const double R = unit * parent.radius;
     for (Index c = 0; c < 4; ++c) {
@@ -158,19 +160,19 @@ TEST(ElementMoments, ChildMomentsOutsideTheNextToFinestLevelAreRefused) {
   const Scene scene(panelrad::testing::validated_builtin("cube"));
   const Collocation col(scene, 2);
   const FastOperator op(col, FastOptions{});
-  EXPECT_THROW(static_cast<void>(op.child_shape_moments(-1)), std::out_of_range);
-  EXPECT_THROW(static_cast<void>(op.child_shape_moments(col.tree().level_size(1))), std::out_of_range);
+  EXPECT_THROW(static_cast<void>(detail::child_shape_moments(op, -1)), std::out_of_range);
+  EXPECT_THROW(static_cast<void>(detail::child_shape_moments(op, col.tree().level_size(1))), std::out_of_range);
   const Collocation roots(scene, 0);
   const FastOperator at_roots(roots, FastOptions{});
-  EXPECT_THROW(static_cast<void>(at_roots.child_shape_moments(0)), std::out_of_range);
+  EXPECT_THROW(static_cast<void>(detail::child_shape_moments(at_roots, 0)), std::out_of_range);
 }
 
 TEST(ElementMoments, ElementOutsideTheSurfaceIsRefused) {
   const Scene scene(panelrad::testing::validated_builtin("cube"));
   const Collocation col(scene, 1);
   const FastOperator op(col, FastOptions{});
-  EXPECT_THROW(static_cast<void>(op.element_moments(-1)), std::out_of_range);
-  EXPECT_THROW(static_cast<void>(op.element_moments(col.size())), std::out_of_range);
+  EXPECT_THROW(static_cast<void>(detail::element_moments(op, -1)), std::out_of_range);
+  EXPECT_THROW(static_cast<void>(detail::element_moments(op, col.size())), std::out_of_range);
 }
 
 }  // namespace

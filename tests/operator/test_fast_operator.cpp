@@ -2,6 +2,7 @@
 // determinism.
 #include <panelrad/operator/collocation.hpp>
 #include <panelrad/operator/dense_operator.hpp>
+#include <panelrad/operator/detail/fast_operator_testing.hpp>
 #include <panelrad/operator/fast_operator.hpp>
 #include <panelrad/support/chunk_pool.hpp>
 #include <panelrad/support/resources.hpp>
@@ -71,12 +72,12 @@ TEST_F(CubeLevel3, CoveringPartitionsTheSurface) {
   const auto& tree = collocation->tree();
   for (Index i = 0; i < collocation->size(); i += 37) {
     std::vector<int> count(static_cast<std::size_t>(collocation->size()), 0);
-    for (Index id : fast.far_clusters(i)) {
-      const auto [l, k] = fast.cluster_of_id(id);
+    for (Index id : detail::far_clusters(fast, i)) {
+      const auto [l, k] = detail::cluster_of_id(fast, id);
       ASSERT_NE(tree.cluster(l, k).facet, collocation->facet(i));
       for (Index e = tree.first_element(l, k); e < tree.end_element(l, k); ++e) ++count[static_cast<std::size_t>(e)];
     }
-    for (Index e : fast.near_elements(i)) ++count[static_cast<std::size_t>(e)];
+    for (Index e : detail::near_elements(fast, i)) ++count[static_cast<std::size_t>(e)];
     for (Index e = 0; e < collocation->size(); ++e) {
       const bool coplanar = collocation->facet(e) == collocation->facet(i);
       ASSERT_EQ(count[static_cast<std::size_t>(e)], coplanar ? 0 : 1) << "row " << i << " element " << e;
@@ -119,8 +120,8 @@ TEST_F(CubeLevel3, SameListsAndProductOnKeptChunks) {
   const auto lists = [&](const FastOperator& op) {
     std::vector<std::vector<geometry::Index>> out;
     for (geometry::Index i = 0; i < 768; ++i) {
-      out.push_back(op.near_elements(i));
-      out.push_back(op.far_clusters(i));
+      out.push_back(detail::near_elements(op, i));
+      out.push_back(detail::far_clusters(op, i));
     }
     return out;
   };

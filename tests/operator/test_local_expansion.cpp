@@ -5,6 +5,7 @@
 #include <panelrad/geometry/admissibility.hpp>
 #include <panelrad/operator/collocation.hpp>
 #include <panelrad/operator/dense_operator.hpp>
+#include <panelrad/operator/detail/fast_operator_testing.hpp>
 #include <panelrad/operator/fast_operator.hpp>
 #include <panelrad/operator/local_expansion.hpp>
 #include <panelrad/operator/operator_factory.hpp>
@@ -166,14 +167,14 @@ TEST_F(CubeLevel4, CoveringsPartitionTheSurface) {
   for (Index i = 0; i < n; i += 41) {
     std::vector<int> count(static_cast<std::size_t>(n), 0);
     const Vec3& P = collocation->collocation_point(i);
-    for (Index id : fast.far_clusters(i)) {
-      const auto [l, k] = fast.cluster_of_id(id);
+    for (Index id : detail::far_clusters(fast, i)) {
+      const auto [l, k] = detail::cluster_of_id(fast, id);
       const geometry::Cluster& c = tree.cluster(l, k);
       ASSERT_TRUE(geometry::is_admissible(P, c.centre, c.radius, 0.5)) << "row " << i << " cluster " << id;
       for (Index e = tree.first_element(l, k); e < tree.end_element(l, k); ++e) ++count[static_cast<std::size_t>(e)];
     }
-    for (Index e : fast.near_elements(i)) ++count[static_cast<std::size_t>(e)];
-    std::vector<Index> a = fast.near_elements(i), b = per_point.near_elements(i);
+    for (Index e : detail::near_elements(fast, i)) ++count[static_cast<std::size_t>(e)];
+    std::vector<Index> a = detail::near_elements(fast, i), b = detail::near_elements(per_point, i);
     std::sort(a.begin(), a.end());
     std::sort(b.begin(), b.end());
     EXPECT_EQ(a, b) << "row " << i;

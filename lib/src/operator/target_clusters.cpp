@@ -74,6 +74,173 @@ void join_levels(std::span<const KeptVector<Found>> found, std::vector<std::int6
   }
 }
 
+// The construction of the target clusters of levels 0..lt (build_target_clusters). Each target's
+// traversal starts from what its parent handed down and writes to its thread's lists of its level
+// (no allocation per target). The top levels go level by level; from level l0 on, where there are
+// enough clusters to share, one task takes the whole subtree of a cluster of level l0, parents
+// before children, so that a parent's hand-down is read by the thread that wrote it and no level
+// waits for the slowest processor. The sources of all levels join the CSR at the end, in one
+// allocation.
+class TargetBuilder {
+ public:
+  TargetBuilder(const geometry::ClusterTree& tree, const PlaneFrame* frames, const std::vector<Index>& level_offset,
+                double unit_scale, double eta, double eta_t, int lt, TargetClusters& out)
+      : tree_(tree), frames_(frames), level_offset_(level_offset), unit_scale_(unit_scale),
+        inv_scale_(1.0 / unit_scale),  // a power of two: exact
+        eta_(eta), eta_t_(eta_t), lt_(lt), L_(tree.finest_level()), out_(out),
+        threads_(std::max(1, omp_get_max_threads())), found_(static_cast<std::size_t>(lt) + 1),
+        sources_(static_cast<std::size_t>(lt) + 1), passes_(static_cast<std::size_t>(lt) + 1) {
+    for (int l = 0; l <= lt; ++l) {
+      found_[static_cast<std::size_t>(l)].resize(static_cast<std::size_t>(tree.level_size(l)));  // each written below
+      sources_[static_cast<std::size_t>(l)].resize(static_cast<std::size_t>(threads_));
+      passes_[static_cast<std::size_t>(l)].resize(static_cast<std::size_t>(threads_));
+    }
+  }
+
+  /// Every target's traversal: the top levels [0, l0) level by level, then the subtrees of l0.
+  void traverse_all() {
+    int l0 = 0;
+    while (l0 <= lt_ && tree_.level_size(l0) < kSubtreesPerThread * threads_) ++l0;
+    traverse_top_levels(l0);
+    if (l0 <= lt_) traverse_subtrees(l0);
+  }
+
+  /// The coplanar roots, the sources' CSR and the starts of the per-point coverings.
+  void join() {
+    out_.coplanar_roots.resize(static_cast<std::size_t>(tree_.num_roots()));
+    for (Index k = 0; k < tree_.num_roots(); ++k)
+      out_.coplanar_roots[static_cast<std::size_t>(k)] = found_[0][static_cast<std::size_t>(k)].coplanar;
+    join_levels(found_, out_.source_start, out_.source, [](const Found& f) { return std::int64_t{f.sources}; },
+                [](const Found& f) { return f.source_at; },
+                [&](std::size_t l, const Found& f) -> const KeptVector<Index>& {
+                  return sources_[l][static_cast<std::size_t>(f.thread)].items;
+                });
+    // The starts of the per-point coverings: what the targets of level lt hand down.
+    out_.start_start.assign(static_cast<std::size_t>(tree_.level_size(lt_)) + 1, 0);
+    join_levels(std::span(found_).last(1), out_.start_start, out_.start,
+                [](const Found& f) { return std::int64_t{f.passes}; }, [](const Found& f) { return f.pass_at; },
+                [&](std::size_t, const Found& f) -> const KeptVector<Item>& {
+                  return passes_[static_cast<std::size_t>(lt_)][static_cast<std::size_t>(f.thread)].items;
+                });
+  }
+
+ private:
+  Index id_of(int l, Index k) const { return level_offset_[static_cast<std::size_t>(l)] + k; }
+
+  // Target k of level l, by thread `thread`, with `stack` its scratch: its rectangle, and the
+  // clusters its parent handed down (from level 0: the roots) sorted into its sources, the
+  // coplanar ones, and those handed to its children.
+  void traverse(int l, Index k, int thread, std::vector<Item>& stack) {
+    const Cluster& sigma = tree_.cluster(l, k);
+    const Index id = id_of(l, k);
+    const PlaneFrame& frame = frames_[static_cast<std::size_t>(id)];
+    const LocalBox box = LocalBox::bounding(frame, unit_scale_ * sigma.vertex[0], unit_scale_ * sigma.vertex[1],
+                                            unit_scale_ * sigma.vertex[2]);
+    out_.box[static_cast<std::size_t>(id)] = box;
+    const Vec3 c = inv_scale_ * box.centre(frame);
+    const double Rb = inv_scale_ * box.half_diagonal();
+    const Index plane = tree_.plane(l, k);
+    KeptVector<Index>& my_sources = sources_[static_cast<std::size_t>(l)][static_cast<std::size_t>(thread)].items;
+    KeptVector<Item>& my_pass = passes_[static_cast<std::size_t>(l)][static_cast<std::size_t>(thread)].items;
+    Found f{};
+    f.thread = thread;
+    f.source_at = static_cast<std::int64_t>(my_sources.size());
+    f.pass_at = static_cast<std::int64_t>(my_pass.size());
+    stack.clear();
+    const auto visit = [&](const Item& first) {
+      stack.push_back(first);
+      while (!stack.empty()) {
+        const Item it = stack.back();
+        stack.pop_back();
+        const Cluster& tau = tree_.cluster(it.level, it.k);
+        if (tree_.plane(it.level, it.k) == plane) {
+          ++f.coplanar;
+        } else if (geometry::is_admissible(c, tau.centre, round_up(tau.radius + round_up(eta_ * Rb)), eta_) &&
+                   geometry::is_admissible(c, tau.centre, round_up(Rb + round_up(eta_t_ * tau.radius)), eta_t_)) {
+          my_sources.push_back(id_of(it.level, it.k));
+        } else if (it.level < L_ && tau.radius >= Rb) {
+          for (Index child = 3; child >= 0; --child) stack.push_back({it.level + 1, 4 * it.k + child});
+        } else {
+          my_pass.push_back(it);
+        }
+      }
+    };
+    if (l == 0) {
+      for (Index root = 0; root < tree_.num_roots(); ++root) visit({0, root});
+    } else {
+      const Found& parent = found_[static_cast<std::size_t>(l) - 1][static_cast<std::size_t>(k / 4)];
+      const KeptVector<Item>& handed = passes_[static_cast<std::size_t>(l) - 1][static_cast<std::size_t>(parent.thread)].items;
+      for (std::int32_t j = 0; j < parent.passes; ++j) visit(handed[static_cast<std::size_t>(parent.pass_at + j)]);
+    }
+    f.sources = static_cast<std::int32_t>(static_cast<std::int64_t>(my_sources.size()) - f.source_at);
+    f.passes = static_cast<std::int32_t>(static_cast<std::int64_t>(my_pass.size()) - f.pass_at);
+    found_[static_cast<std::size_t>(l)][static_cast<std::size_t>(k)] = f;
+  }
+
+  // The first failure of a traversal, kept to be thrown once the team is done.
+  void fail(int l, const std::exception& e) {
+#pragma omp critical(panelrad_target_clusters)
+    if (!failed_) {
+      failed_ = true;
+      failure_ = "target clusters of level " + std::to_string(l) + ": " + e.what();
+    }
+  }
+
+  // The top levels: few clusters each, too few to wake a team for.
+  void traverse_top_levels(int l0) {
+    for (int l = 0; l < l0; ++l) {
+      const Index m = tree_.level_size(l);
+#pragma omp parallel if (m >= kParallelLevel)
+      {
+        std::vector<Item> stack;
+#pragma omp for schedule(dynamic, 1)
+        for (Index k = 0; k < m; ++k) try {
+          traverse(l, k, omp_get_thread_num(), stack);
+        } catch (const std::exception& e) {
+          fail(l, e);
+        }
+      }
+      if (failed_) throw std::runtime_error(failure_);
+    }
+  }
+
+  // The subtrees of the clusters of level l0, one task each, levels l0..lt.
+  void traverse_subtrees(int l0) {
+    const Index subtrees = tree_.level_size(l0);
+#pragma omp parallel
+    {
+      const int thread = omp_get_thread_num();
+      std::vector<Item> stack;
+#pragma omp for schedule(dynamic, 1)
+      for (Index r = 0; r < subtrees; ++r) {
+        int l = l0;
+        try {
+          for (; l <= lt_; ++l) {
+            const Index first = r << (2 * (l - l0)), end = (r + 1) << (2 * (l - l0));
+            for (Index k = first; k < end; ++k) traverse(l, k, thread, stack);
+          }
+        } catch (const std::exception& e) {
+          fail(l, e);
+        }
+      }
+    }
+    if (failed_) throw std::runtime_error(failure_);
+  }
+
+  const geometry::ClusterTree& tree_;
+  const PlaneFrame* frames_;
+  const std::vector<Index>& level_offset_;
+  double unit_scale_, inv_scale_, eta_, eta_t_;
+  int lt_, L_;
+  TargetClusters& out_;
+  int threads_;
+  std::vector<KeptVector<Found>> found_;
+  std::vector<std::vector<ThreadList<Index>>> sources_;  // [level][thread]
+  std::vector<std::vector<ThreadList<Item>>> passes_;    // [level][thread]
+  bool failed_ = false;
+  std::string failure_;
+};
+
 }  // namespace
 
 std::size_t TargetClusters::bytes() const {
@@ -94,134 +261,9 @@ TargetClusters build_target_clusters(const geometry::ClusterTree& tree, const Pl
   const Index targets = level_offset[static_cast<std::size_t>(lt) + 1];
   out.box.resize(static_cast<std::size_t>(targets));
   out.source_start.assign(static_cast<std::size_t>(targets) + 1, 0);
-  const auto id_of = [&](int l, Index k) { return level_offset[static_cast<std::size_t>(l)] + k; };
-  const double inv_scale = 1.0 / unit_scale;  // a power of two: exact
-
-  // Each target's traversal starts from what its parent handed down and writes to its thread's
-  // lists of its level (no allocation per target). The top levels go level by level; from level
-  // l0 on, where there are enough clusters to share, one task takes the whole subtree of a
-  // cluster of level l0, parents before children, so that a parent's hand-down is read by the
-  // thread that wrote it and no level waits for the slowest processor. The sources of all levels
-  // join the CSR at the end, in one allocation.
-  const int threads = std::max(1, omp_get_max_threads());
-  std::vector<KeptVector<Found>> found(static_cast<std::size_t>(lt) + 1);
-  std::vector<std::vector<ThreadList<Index>>> sources(static_cast<std::size_t>(lt) + 1);  // [level][thread]
-  std::vector<std::vector<ThreadList<Item>>> passes(static_cast<std::size_t>(lt) + 1);    // [level][thread]
-  for (int l = 0; l <= lt; ++l) {
-    found[static_cast<std::size_t>(l)].resize(static_cast<std::size_t>(tree.level_size(l)));  // each written below
-    sources[static_cast<std::size_t>(l)].resize(static_cast<std::size_t>(threads));
-    passes[static_cast<std::size_t>(l)].resize(static_cast<std::size_t>(threads));
-  }
-  int l0 = 0;
-  while (l0 <= lt && tree.level_size(l0) < kSubtreesPerThread * threads) ++l0;
-
-  // Target k of level l, by thread `thread`, with `stack` its scratch.
-  const auto traverse = [&](int l, Index k, int thread, std::vector<Item>& stack) {
-    const Cluster& sigma = tree.cluster(l, k);
-    const Index id = id_of(l, k);
-    const PlaneFrame& frame = frames[static_cast<std::size_t>(id)];
-    const LocalBox box = LocalBox::bounding(frame, unit_scale * sigma.vertex[0], unit_scale * sigma.vertex[1],
-                                            unit_scale * sigma.vertex[2]);
-    out.box[static_cast<std::size_t>(id)] = box;
-    const Vec3 c = inv_scale * box.centre(frame);
-    const double Rb = inv_scale * box.half_diagonal();
-    const Index plane = tree.plane(l, k);
-    KeptVector<Index>& my_sources = sources[static_cast<std::size_t>(l)][static_cast<std::size_t>(thread)].items;
-    KeptVector<Item>& my_pass = passes[static_cast<std::size_t>(l)][static_cast<std::size_t>(thread)].items;
-    Found f{};
-    f.thread = thread;
-    f.source_at = static_cast<std::int64_t>(my_sources.size());
-    f.pass_at = static_cast<std::int64_t>(my_pass.size());
-    stack.clear();
-    const auto visit = [&](const Item& first) {
-      stack.push_back(first);
-      while (!stack.empty()) {
-        const Item it = stack.back();
-        stack.pop_back();
-        const Cluster& tau = tree.cluster(it.level, it.k);
-        if (tree.plane(it.level, it.k) == plane) {
-          ++f.coplanar;
-        } else if (geometry::is_admissible(c, tau.centre, round_up(tau.radius + round_up(eta * Rb)), eta) &&
-                   geometry::is_admissible(c, tau.centre, round_up(Rb + round_up(eta_t * tau.radius)), eta_t)) {
-          my_sources.push_back(id_of(it.level, it.k));
-        } else if (it.level < L && tau.radius >= Rb) {
-          for (Index child = 3; child >= 0; --child) stack.push_back({it.level + 1, 4 * it.k + child});
-        } else {
-          my_pass.push_back(it);
-        }
-      }
-    };
-    if (l == 0) {
-      for (Index root = 0; root < tree.num_roots(); ++root) visit({0, root});
-    } else {
-      const Found& parent = found[static_cast<std::size_t>(l) - 1][static_cast<std::size_t>(k / 4)];
-      const KeptVector<Item>& handed = passes[static_cast<std::size_t>(l) - 1][static_cast<std::size_t>(parent.thread)].items;
-      for (std::int32_t j = 0; j < parent.passes; ++j) visit(handed[static_cast<std::size_t>(parent.pass_at + j)]);
-    }
-    f.sources = static_cast<std::int32_t>(static_cast<std::int64_t>(my_sources.size()) - f.source_at);
-    f.passes = static_cast<std::int32_t>(static_cast<std::int64_t>(my_pass.size()) - f.pass_at);
-    found[static_cast<std::size_t>(l)][static_cast<std::size_t>(k)] = f;
-  };
-
-  bool failed = false;
-  std::string failure;
-  const auto fail = [&](int l, const std::exception& e) {
-#pragma omp critical(panelrad_target_clusters)
-    if (!failed) {
-      failed = true;
-      failure = "target clusters of level " + std::to_string(l) + ": " + e.what();
-    }
-  };
-  for (int l = 0; l < l0; ++l) {  // the top levels: few clusters each, too few to wake a team for
-    const Index m = tree.level_size(l);
-#pragma omp parallel if (m >= kParallelLevel)
-    {
-      std::vector<Item> stack;
-#pragma omp for schedule(dynamic, 1)
-      for (Index k = 0; k < m; ++k) try {
-        traverse(l, k, omp_get_thread_num(), stack);
-      } catch (const std::exception& e) {
-        fail(l, e);
-      }
-    }
-    if (failed) throw std::runtime_error(failure);
-  }
-  if (l0 <= lt) {
-    const Index subtrees = tree.level_size(l0);
-#pragma omp parallel
-    {
-      const int thread = omp_get_thread_num();
-      std::vector<Item> stack;
-#pragma omp for schedule(dynamic, 1)
-      for (Index r = 0; r < subtrees; ++r) {
-        int l = l0;
-        try {
-          for (; l <= lt; ++l) {
-            const Index first = r << (2 * (l - l0)), end = (r + 1) << (2 * (l - l0));
-            for (Index k = first; k < end; ++k) traverse(l, k, thread, stack);
-          }
-        } catch (const std::exception& e) {
-          fail(l, e);
-        }
-      }
-    }
-    if (failed) throw std::runtime_error(failure);
-  }
-  out.coplanar_roots.resize(static_cast<std::size_t>(tree.num_roots()));
-  for (Index k = 0; k < tree.num_roots(); ++k)
-    out.coplanar_roots[static_cast<std::size_t>(k)] = found[0][static_cast<std::size_t>(k)].coplanar;
-  join_levels(found, out.source_start, out.source, [](const Found& f) { return std::int64_t{f.sources}; },
-              [](const Found& f) { return f.source_at; },
-              [&](std::size_t l, const Found& f) -> const KeptVector<Index>& {
-                return sources[l][static_cast<std::size_t>(f.thread)].items;
-              });
-  // The starts of the per-point coverings: what the targets of level lt hand down.
-  out.start_start.assign(static_cast<std::size_t>(tree.level_size(lt)) + 1, 0);
-  join_levels(std::span(found).last(1), out.start_start, out.start, [](const Found& f) { return std::int64_t{f.passes}; },
-              [](const Found& f) { return f.pass_at; },
-              [&](std::size_t, const Found& f) -> const KeptVector<Item>& {
-                return passes[static_cast<std::size_t>(lt)][static_cast<std::size_t>(f.thread)].items;
-              });
+  TargetBuilder builder(tree, frames, level_offset, unit_scale, eta, eta_t, lt, out);
+  builder.traverse_all();
+  builder.join();
   return out;
 }
 

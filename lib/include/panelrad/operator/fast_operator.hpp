@@ -11,16 +11,21 @@
 // An operator may own only the rows [begin, end) of K_n (FastOptions::rows): the coverings (42),
 // near field (43) and far coefficients (44)-(45) of those rows; the cluster moments (48) of a
 // product still need all of v.
+// Beside it: the self-check of any operator (self_check.hpp), the cost model of storing the far
+// coefficients (far_field_costs.hpp), and for the tests the coverings and moments as the operator
+// holds them (detail/fast_operator_testing.hpp).
 #include <panelrad/geometry/occluders.hpp>
 #include <panelrad/support/uninitialized_vector.hpp>
 #include <panelrad/operator/clustering_parameters.hpp>
 #include <panelrad/operator/collocation.hpp>
 #include <panelrad/operator/far_field.hpp>
+#include <panelrad/operator/far_field_costs.hpp>
 #include <panelrad/support/chunk_pool.hpp>
 #include <panelrad/support/kept_vector.hpp>
 #include <panelrad/support/large_buffer.hpp>
 #include <panelrad/operator/linear_operator.hpp>
 #include <panelrad/operator/near_field.hpp>
+#include <panelrad/operator/self_check.hpp>
 
 #include <cstddef>
 #include <cstdint>
@@ -40,6 +45,9 @@ struct ClusterFrames;
 struct ClusterMoments;
 }
 struct TargetClusters;
+namespace detail {
+struct FastOperatorTesting;
+}
 
 /// Rows [begin, end) of K_n, the rows P_i whose coverings (42) an operator holds; end = -1 means
 /// n. The default is every row.
@@ -89,18 +97,6 @@ struct FastOptions : ClusteringParameters {
   int probe_samples = 0;
 };
 
-/// The cost model of storing against recomputing the far coefficients (44)-(45), per (point,
-/// cluster) pair in nanoseconds of one core, from the measurements in fast_operator.cpp.
-struct FarFieldCosts {
-  double recompute_ns = 0;  ///< computing one pair's coefficients (kernel_taylor_coefficients)
-  double fill_ns = 0;       ///< computing and writing them once at setup (first touch of new memory)
-  double read_ns = 0;       ///< reading them back in a product
-  /// Whether `products` products repay storing: products x (recompute - read) > fill.
-  bool store_pays(int products) const { return products * (recompute_ns - read_ns) > fill_ns; }
-};
-/// The model for degree M with coefficients of `bytes_per_term` bytes (8 double, 4 float).
-FarFieldCosts far_field_costs(int degree, std::size_t bytes_per_term);
-
 /// What setup found and stored: the covering's counts (over the rows held).
 struct FastStatistics {
   std::size_t near_pairs = 0;          ///< (P_i, element) pairs in the near field
@@ -126,55 +122,9 @@ struct FastStatistics {
   double targets_s = 0;    ///< setup: target clusters and their sources (local expansions)
 };
 
-/// One test vector of the self-check and its worst error over the sampled rows.
-struct SelfCheckVector {
-  std::string name;            ///< what v is, e.g. "cos 7x + sin(5y) z"
-  double relative_error = 0;   ///< max_k |(K_fast v)_k - (K v)_k| / max_k (K |v|)_k over the sampled rows k
-  geometry::Index row = -1;    ///< the row k where the maximum is attained
-};
-
-/// The operator's own check of its accuracy on sampled rows (exact rows are O(n) each).
-///
-/// What it measures. The solution's error from the product's error: with (I - K) u = E and
-/// (I - K_f) u_f = E, (I - K)(u - u_f) = (K - K_f) u_f, so by (11)
-///     ||u - u_f||_inf <= ||(K - K_f) u_f||_inf / (1 - rho_max).
-/// The check estimates delta = ||(K - K_f) v||_inf / ||K v||_inf for vectors v like the
-/// solution: smooth (constant, linear, quadratic in the coordinates scaled to the bounding box),
-/// oscillating (cos 7x + sin(5y) z, the same scaled coordinates), piecewise constant by facet
-/// (the solution jumps where rho or E changes from facet to facet) and rough (a random +-1
-/// vector with a fixed seed: the worst case of the row sums of |K - K_f|, the operator's
-/// inf-norm). The maximum over the vectors is the check value.
-///
-/// Rows sampled: `samples` rows, half evenly spaced over the element order (which runs facet by
-/// facet), half among the elements at a corner of an input triangle (next to the surface's
-/// edges and corners, where the near field is largest and other facets are nearest); every row
-/// when samples >= n. Deterministic.
-///
-/// Relative to max_k (K |v|)_k over the sampled rows k (inf-norm relative; K >= 0 entrywise, so
-/// this is max_k |(K v)_k| for v >= 0). For a sign-changing v it does not divide by the
-/// cancellations in K v (a random +-1 v has |K v| ~ n^-1/2 K|v|, which would make the check grow
-/// with n without any change in the solution's error); and it is the scale of the bound:
-/// ||(K - K_f) v||_inf <= delta max_k (K|v|)_k <= delta rho_max ||v||_inf, so with v = u_f
-///     ||u - u_f||_inf / ||u_f||_inf <= delta rho_max / (1 - rho_max),
-/// delta the check value (an estimate: sampled rows and vectors like u_f, not a proof).
-/// The exact side of the self-check: the sampled rows, the test vectors, and per row r and
-/// vector k (index r * vectors + k) the exact (K v_k)_r and (K |v_k|)_r. It depends on the
-/// collocation (rows and their weights) and the occluders only, not on eta or M: one reference
-/// serves every operator of the same rows and occluders.
-struct FastSelfCheckReference {
-  std::vector<geometry::Index> rows;
-  std::vector<std::pair<std::string, Eigen::VectorXd>> vectors;
-  std::vector<double> exact, scale;
-  double seconds = 0;
-};
-
-struct FastSelfCheck {
-  int rows = 0;                              ///< rows sampled
-  double relative_error = 0;                 ///< max over `vectors` (+inf when a product is not finite)
-  std::vector<SelfCheckVector> vectors;      ///< one entry per test vector, in self_check_vectors() order
-  std::vector<geometry::Index> sampled_rows; ///< the rows compared, ascending
-  double seconds = 0;
-};
+/// The self-check's types for the fast operator (self_check.hpp: they serve any operator).
+using FastSelfCheck = SelfCheck;
+using FastSelfCheckReference = SelfCheckReference;
 
 class FastOperator final : public RadiosityOperator {
  public:
@@ -206,19 +156,23 @@ class FastOperator final : public RadiosityOperator {
   const FastStatistics& statistics() const { return stats_; }
   const FastOptions& options() const { return options_; }
 
-  /// Measures the product's real error on `samples` sampled rows (FastSelfCheck) against the
-  /// exact closed-form rows (near field and far field together), for every self_check_vectors().
-  /// The rows are sampled among the rows held.
+  /// The self-check (self_check.hpp) of this operator: the product's real error on `samples`
+  /// sampled rows against the exact closed-form rows (near field and far field together), for
+  /// every self_check_vectors(). The rows are sampled among the rows held, and only they are
+  /// computed (with the local expansions of their target clusters alone): the values of apply()
+  /// on those rows, bit for bit.
   FastSelfCheck self_check(int samples = 32) const;
-  /// The exact rows of self_check(samples), for comparing several operators of the same rows.
+  /// The exact rows of self_check(samples) (self_check_reference of self_check.hpp on the rows
+  /// held, with this operator's row weights and occluders), for comparing several operators of
+  /// the same rows.
   FastSelfCheckReference self_check_reference(int samples = 32) const;
   /// self_check against a reference of an operator with the same collocation rows and occluders
   /// (std::invalid_argument when its rows are not held or its vectors are not of length n).
   FastSelfCheck self_check(const FastSelfCheckReference& reference) const;
 
-  /// The test vectors of self_check, with their names: deterministic functions of the
-  /// collocation points (and facets) of this operator.
-  std::vector<std::pair<std::string, Eigen::VectorXd>> self_check_vectors() const;
+  /// The test vectors of self_check, with their names: self_check_vectors of self_check.hpp on
+  /// this operator's collocation points (and facets).
+  SelfCheckVectors self_check_vectors() const;
 
   /// Bytes the operator will hold without far-field coefficients, and the far-field pairs, from
   /// the coverings of up to 256 evenly spaced rows of `rows` (cheap: no integrals). For refusing
@@ -242,6 +196,11 @@ class FastOperator final : public RadiosityOperator {
   /// `rows` rows held (the row starts); without it, all n.
   static std::size_t fixed_bytes(std::size_t n, std::size_t clusters, int degree);
   static std::size_t fixed_bytes(std::size_t n, std::size_t clusters, int degree, std::size_t rows);
+
+ private:
+  // For the tests (detail/fast_operator_testing.hpp) and the setup's own use; not the operator's
+  // interface.
+  friend struct detail::FastOperatorTesting;
 
   /// Cluster ids of the far field and element ids of the near field of row i (for tests: the
   /// covering plus the skipped coplanar clusters must partition the surface). The far field is
@@ -274,7 +233,7 @@ class FastOperator final : public RadiosityOperator {
   geometry::Index cluster_id(int level, geometry::Index k) const { return level_offset_[static_cast<std::size_t>(level)] + k; }
   std::pair<int, geometry::Index> cluster_of_id(geometry::Index id) const;
 
- private:
+
   // The coverings (42) of a block of kRowBlock consecutive rows held, as they are stored: per row
   // the starts (within the block) of its near-field element ids with their integrals rho_i/pi Int G
   // (43) and of its far-field cluster ids, and the index among all far pairs of the block's first
@@ -305,53 +264,22 @@ class FastOperator final : public RadiosityOperator {
     std::int64_t far_count;
     std::int64_t far_first;  // the index of its first far pair among all
   };
-  RowLists row_lists(std::size_t r) const;
 
-  /// The target clusters' finest level lt (-1: none), degree d and eta_t (target_plan).
-  struct TargetPlan {
-    int level = -1;
-    int degree = 0;
-    double eta = 0;
-  };
-  static TargetPlan target_plan(const FastOptions& options, int finest_level);
-  static std::vector<geometry::Index> level_offsets(const geometry::ClusterTree& tree);
-  static std::shared_ptr<TargetClusters> make_target_clusters(const geometry::ClusterTree& tree, const FastOptions& options);
-  /// `alongside`, when given, is run by one thread of the sampling's team while the others sample.
-  static MemoryEstimate estimate_memory(const Collocation& collocation, double eta, int degree, const RowRange& rows,
-                                        const TargetClusters* targets, const std::function<void()>& alongside = {});
-
-  // Setup stages, in order.
+  // Setup (fast_operator.cpp), its stages in order.
   void check_options();
-  void refuse_beyond_memory(const Collocation& collocation, const TargetClusters* targets) const;
   void report_stage(const std::string& what) const;
   std::string rows_note() const;
+  bool row_computed(geometry::Index i) const;
+  std::size_t local_row(geometry::Index i, const char* who) const;
+  static std::vector<geometry::Index> level_offsets(const geometry::ClusterTree& tree);
+
+  // Cluster frames and element moments (fast_operator_geometry.cpp).
   void setup_cluster_frames();
   void setup_element_data(const Collocation& collocation);
-  void cover_rows();
-  void store_coverings();
-  void setup_far_coefficients();
-  void setup_target_clusters(std::shared_ptr<TargetClusters> targets);
-  bool row_computed(geometry::Index i) const;
-  /// The target clusters of levels 0..target_level containing row i, coarse to fine, that have
-  /// a local expansion (a slot), appended to `out`.
-  void append_target_ancestors(geometry::Index i, std::vector<geometry::Index>& out) const;
-  /// The values at their interpolation points of the local expansions of `targets` (ascending ids
-  /// with a slot, each one's parent among them when it has a slot), C columns of moments
-  /// interleaved, into values[slot (d+1)^2 C + k C + c]: each target's own sources, plus its
-  /// parent's expansion evaluated at its points.
-  void evaluate_local_expansions(const double* moments, const double* v, int C,
-                                 const std::vector<geometry::Index>& targets, std::vector<double>& values) const;
-  /// Row i's local-expansion part for C columns: the interpolant of its target cluster of level
-  /// target_level, whose values hold its ancestors' expansions too.
-  template <int C>
-  void add_local_expansions(geometry::Index i, const double* values, double* sum) const;
-  std::size_t held_bytes() const;
-  std::size_t coefficient_bytes() const { return options_.single_precision_coefficients ? sizeof(float) : sizeof(double); }
-  std::size_t local_row(geometry::Index i, const char* who) const;
-
-  std::vector<geometry::Index> self_check_rows(int samples) const;
-  void exact_rows(FastSelfCheckReference& reference) const;
-
+  /// The element moments by shape, two sets per root (setup_element_data).
+  void setup_shape_moments();
+  /// The moments of level L - 1's four elements per placement class (setup_element_data).
+  void setup_child_shape_moments();
   void compute_moments(const Eigen::VectorXd& v, UninitializedVector<double>& moments) const;
   /// Row i's side of its far pairs (P_i in the far field's unit, n_P, rho_i/pi).
   far_field_batch::RowPoint far_row_point(geometry::Index i) const;
@@ -363,6 +291,76 @@ class FastOperator final : public RadiosityOperator {
   /// The moments of every cluster for C columns: `moments` (compute_moments) above the finest
   /// level, v (C columns interleaved) times the element moments by shape on it.
   far_field_batch::ClusterMoments cluster_moments(const double* moments, const double* v) const;
+
+  // The coverings (42) and their row lists (fast_operator_coverings.cpp).
+  struct CoveringLists;  // one thread's lists of the block it builds
+  struct CoveringTally;  // one thread's counts of skipped rows and clusters, and of visibility
+  void cover_rows();
+  /// Block b's coverings (42) and near-field integrals (43), gathered into `lists`.
+  void cover_block(geometry::Index b, CoveringLists& lists, CoveringTally& tally) const;
+  /// Row i's covering (42) and near field (43) appended to `lists` (a row computed, rho_i = rho).
+  void cover_row(geometry::Index i, double rho, CoveringLists& lists, CoveringTally& tally) const;
+  /// Block b's lists written once into one piece of the calling thread's chunks.
+  void store_block(geometry::Index b, const CoveringLists& lists);
+  void store_coverings();
+  RowLists row_lists(std::size_t r) const;
+
+  // The target clusters and their local expansions (fast_operator_targets.cpp).
+  /// The target clusters' finest level lt (-1: none), degree d and eta_t (target_plan).
+  struct TargetPlan {
+    int level = -1;
+    int degree = 0;
+    double eta = 0;
+  };
+  static TargetPlan target_plan(const FastOptions& options, int finest_level);
+  static std::shared_ptr<TargetClusters> make_target_clusters(const geometry::ClusterTree& tree, const FastOptions& options);
+  void setup_target_clusters(std::shared_ptr<TargetClusters> targets);
+  /// The target clusters of levels 0..target_level containing row i, coarse to fine, that have
+  /// a local expansion (a slot), appended to `out`.
+  void append_target_ancestors(geometry::Index i, std::vector<geometry::Index>& out) const;
+  /// The values at their interpolation points of the local expansions of `targets` (ascending ids
+  /// with a slot, each one's parent among them when it has a slot), C columns of moments
+  /// interleaved, into values[slot (d+1)^2 C + k C + c]: each target's own sources, plus its
+  /// parent's expansion evaluated at its points.
+  void evaluate_local_expansions(const double* moments, const double* v, int C,
+                                 const std::vector<geometry::Index>& targets, std::vector<double>& values) const;
+  /// The first step of evaluate_local_expansions: each target's own sources at its points.
+  void evaluate_target_sources(const double* moments, const double* v, int C,
+                               const std::vector<geometry::Index>& targets, std::vector<double>& values) const;
+  /// The second step: each target of levels 1..lt adds its parent's expansion at its points.
+  void inherit_parent_expansions(int C, const std::vector<geometry::Index>& targets, std::vector<double>& values) const;
+  /// Row i's local-expansion part for C columns: the interpolant of its target cluster of level
+  /// target_level, whose values hold its ancestors' expansions too.
+  template <int C>
+  void add_local_expansions(geometry::Index i, const double* values, double* sum) const;
+
+  // The far store (fast_operator_far_store.cpp).
+  /// Whether the far coefficients are stored: only when they fit and storing pays for the
+  /// products expected (far_field_costs).
+  bool far_storage_chosen() const;
+  void setup_far_coefficients();
+  std::size_t coefficient_bytes() const { return options_.single_precision_coefficients ? sizeof(float) : sizeof(double); }
+
+  // The memory estimate (fast_operator_memory.cpp).
+  /// `alongside`, when given, is run by one thread of the sampling's team while the others sample.
+  static MemoryEstimate estimate_memory(const Collocation& collocation, double eta, int degree, const RowRange& rows,
+                                        const TargetClusters* targets, const std::function<void()>& alongside = {});
+  void refuse_beyond_memory(const Collocation& collocation, const TargetClusters* targets) const;
+  std::size_t held_bytes() const;
+
+  // The arrays of a product (cluster moments (48), local expansions' values, a block's columns),
+  // kept from one product to the next: allocating them anew costs a page fault per 4 KiB each
+  // time (about 235 MB of moments at n = 3,145,728, M 6). They are sized uninitialized, so that
+  // the parallel loops that fill them touch them first, not one thread zeroing them. The
+  // self-check's products use them too. A product that finds them in use by another one running
+  // at the same time uses arrays of its own.
+  struct ProductWorkspace {
+    UninitializedVector<double> moments, v_block, m_block;
+    std::vector<double> local_values;
+  };
+  // The product (fast_operator_product.cpp).
+  /// The shared workspace when it is free, else `own` (the lock, when taken, is held by `lock`).
+  ProductWorkspace& acquire_workspace(std::unique_lock<std::mutex>& lock, ProductWorkspace& own) const;
   double apply_row(geometry::Index i, const Eigen::VectorXd& v, const UninitializedVector<double>& moments,
                    const std::vector<double>& local_values, double* scratch) const;
   /// Row i of the product for C vectors: out[c] = (K_n v_c)_i, each from its own moments, every
@@ -370,6 +368,15 @@ class FastOperator final : public RadiosityOperator {
   template <int C>
   void apply_row_columns(geometry::Index i, const double* v, const double* moments, const double* local_values,
                          double* scratch, double* out) const;
+
+  // The self-check's sampled rows (fast_operator_self_check.cpp).
+  /// The self-check's rows among the rows held (self_check_rows of self_check.hpp).
+  std::vector<geometry::Index> self_check_rows(int samples) const;
+  /// Rows `rows` of K_n v, (K_n v)_{rows[r]} into out[r], each by apply_row: the moments (48) of
+  /// v and the local expansions of those rows' targets only (`targets`: their ancestors, ascending).
+  void apply_sampled_rows(const Eigen::VectorXd& v, std::span<const geometry::Index> rows,
+                          const std::vector<geometry::Index>& targets, ProductWorkspace& workspace,
+                          std::span<double> out) const;
 
   std::shared_ptr<const geometry::ClusterTree> tree_;
   FastOptions options_;
@@ -410,18 +417,6 @@ class FastOperator final : public RadiosityOperator {
   std::shared_ptr<const TargetClusters> targets_;
   std::vector<std::int64_t> local_slot_;
   std::vector<geometry::Index> active_targets_;
-  // The arrays of a product (cluster moments (48), local expansions' values, a block's columns),
-  // kept from one product to the next: allocating them anew costs a page fault per 4 KiB each
-  // time (about 235 MB of moments at n = 3,145,728, M 6). They are sized uninitialized, so that
-  // the parallel loops that fill them touch them first, not one thread zeroing them. The
-  // self-check's products use them too. A product that finds them in use by another one running
-  // at the same time uses arrays of its own.
-  struct ProductWorkspace {
-    UninitializedVector<double> moments, v_block, m_block;
-    std::vector<double> local_values;
-  };
-  /// The shared workspace when it is free, else `own` (the lock, when taken, is held by `lock`).
-  ProductWorkspace& acquire_workspace(std::unique_lock<std::mutex>& lock, ProductWorkspace& own) const;
   mutable std::mutex workspace_mutex_;
   mutable ProductWorkspace workspace_;
   FastStatistics stats_;

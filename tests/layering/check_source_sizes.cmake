@@ -1,0 +1,181 @@
+# Checks the sizes of lib/'s sources: one file one job, one function one step.
+#   - no .cpp or .hpp under lib/ longer than MAX_FILE_LINES (700) lines;
+#   - no function body in lib/src/ longer than MAX_FUNCTION_LINES (80) lines, counted from the line
+#     of its opening brace to the line of its closing brace.
+# Fails naming each offending file (and function, with the line of its opening brace).
+# Run: cmake -DSOURCE_DIR=<project> -P check_source_sizes.cmake
+#
+# The function bodies are found by a brace-matching heuristic, not a C++ parser. Per file: string
+# and character literals and comments are removed (block comments across lines too; raw string
+# literals R"(...)" are not recognised, and lib/ has none), preprocessor lines skipped; then the
+# text is cut at every '{', '}' and ';'. The text since the last of them is the head of the next
+# '{'. Braces of namespaces, extern blocks, classes, structs, unions and enums are scopes: a '{'
+# opened directly inside scopes only (at namespace or class level) whose head contains ')' and
+# does not start a class, struct, union or enum is a function body (free functions, member
+# functions defined outside or inside their class, constructors with their initializer lists,
+# lambdas assigned at namespace scope); every other such '{' (an initializer) is neither, and its
+# contents are skipped, as are a function's own nested braces. Lambdas and local classes inside a
+# function count towards it.
+cmake_minimum_required(VERSION 3.20)
+if(NOT SOURCE_DIR)
+  message(FATAL_ERROR "check_source_sizes: set -DSOURCE_DIR")
+endif()
+if(NOT MAX_FILE_LINES)
+  set(MAX_FILE_LINES 700)
+endif()
+if(NOT MAX_FUNCTION_LINES)
+  set(MAX_FUNCTION_LINES 80)
+endif()
+
+# The function bodies of `src` longer than MAX_FUNCTION_LINES, appended to `out_var` as
+# "file:line: ..." entries.
+function(check_function_bodies src rel out_var)
+  file(READ "${src}" text)
+  # Neutralise what would upset CMake's lists before splitting into lines: escapes inside
+  # literals first (so that the literals still match below), then every backslash, bracket and
+  # semicolon (';' becomes '`', which the code of lib/ never uses outside comments).
+  string(REPLACE "\\\\" "<BB>" text "${text}")
+  string(REPLACE "\\\"" "<Q>" text "${text}")
+  string(REPLACE "\\'" "<Q>" text "${text}")
+  string(REPLACE "\\" "<BSL>" text "${text}")
+  string(REPLACE "[" "<" text "${text}")
+  string(REPLACE "]" ">" text "${text}")
+  string(REPLACE ";" "`" text "${text}")
+  string(REPLACE "\n" ";" lines "${text}")
+
+  set(found "")
+  set(line_no 0)
+  set(in_comment FALSE)
+  set(continued FALSE)   # a preprocessor line continued by a backslash
+  set(head "")
+  set(kinds "")          # stack of the open braces: S scope, F function, O other
+  set(open_lines "")     # line of each open brace
+  set(open_heads "")
+  set(depth_other 0)     # braces open inside a function or initializer (not tracked one by one)
+  foreach(line IN LISTS lines)
+    math(EXPR line_no "${line_no} + 1")
+    if(continued)
+      string(REGEX MATCH "<BSL>[ \t]*$" more "${line}")
+      if(NOT more)
+        set(continued FALSE)
+      endif()
+      continue()
+    endif()
+    if(in_comment)
+      string(FIND "${line}" "*/" end)
+      if(end EQUAL -1)
+        continue()
+      endif()
+      math(EXPR end "${end} + 2")
+      string(SUBSTRING "${line}" ${end} -1 line)
+      set(in_comment FALSE)
+    endif()
+    if(line MATCHES "^[ \t]*#")
+      if(line MATCHES "<BSL>[ \t]*$")
+        set(continued TRUE)
+      endif()
+      continue()
+    endif()
+    string(REGEX REPLACE "\"[^\"]*\"" "\"\"" line "${line}")
+    string(REGEX REPLACE "'[^']?[^']?'" "''" line "${line}")
+    string(REGEX REPLACE "/\\*([^*]|\\*+[^*/])*\\*+/" " " line "${line}")
+    string(REGEX REPLACE "//.*$" "" line "${line}")
+    string(FIND "${line}" "/*" start)
+    if(NOT start EQUAL -1)
+      string(SUBSTRING "${line}" 0 ${start} line)
+      set(in_comment TRUE)
+    endif()
+    string(REGEX MATCHALL "[^{}`]*[{}`]|[^{}`]+$" segments "${line}")
+    foreach(segment IN LISTS segments)
+      string(REGEX MATCH "[{}`]$" delimiter "${segment}")
+      string(REGEX REPLACE "[{}`]$" "" body "${segment}")
+      string(APPEND head " ${body}")
+      if(NOT delimiter)
+        continue()
+      endif()
+      if(delimiter STREQUAL "`")
+        set(head "")
+      elseif(delimiter STREQUAL "{")
+        if(depth_other GREATER 0)
+          math(EXPR depth_other "${depth_other} + 1")
+        else()
+          string(STRIP "${head}" h)
+          if(h MATCHES "^(template[ \t]*<.*>[ \t]*)?(struct|class|union|enum)([^A-Za-z0-9_]|$)" OR
+             (h MATCHES "(^|[^A-Za-z0-9_])(namespace|extern)([^A-Za-z0-9_]|$)" AND NOT h MATCHES "\\)"))
+            list(APPEND kinds S)
+          elseif(h MATCHES "\\)")
+            list(APPEND kinds F)
+            list(APPEND open_lines ${line_no})
+            string(REGEX REPLACE "[ \t]+" " " h "${h}")
+            string(REGEX REPLACE "`" "" h "${h}")
+            string(LENGTH "${h}" h_len)
+            if(h_len GREATER 100)
+              string(SUBSTRING "${h}" 0 100 h)
+              string(APPEND h " ...")
+            endif()
+            list(APPEND open_heads "${h}")
+            set(depth_other 1)
+          else()
+            list(APPEND kinds O)
+            list(APPEND open_lines ${line_no})
+            list(APPEND open_heads "-")
+            set(depth_other 1)
+          endif()
+        endif()
+        set(head "")
+      else()  # "}"
+        if(depth_other GREATER 1)
+          math(EXPR depth_other "${depth_other} - 1")
+        elseif(depth_other EQUAL 1)
+          set(depth_other 0)
+          list(POP_BACK kinds kind)
+          list(POP_BACK open_lines opened)
+          list(POP_BACK open_heads opened_head)
+          math(EXPR length "${line_no} - ${opened} + 1")
+          if(kind STREQUAL "F" AND length GREATER MAX_FUNCTION_LINES)
+            list(APPEND found "${rel}:${opened}: a function body of ${length} lines (more than ${MAX_FUNCTION_LINES}): ${opened_head}")
+          endif()
+        else()
+          list(LENGTH kinds open)
+          if(open GREATER 0)
+            list(POP_BACK kinds kind)
+          endif()
+        endif()
+        set(head "")
+      endif()
+    endforeach()
+  endforeach()
+  set(${out_var} ${${out_var}} ${found} PARENT_SCOPE)
+endfunction()
+
+set(failures "")
+file(GLOB_RECURSE sources "${SOURCE_DIR}/lib/*.cpp" "${SOURCE_DIR}/lib/*.hpp")
+list(SORT sources)
+set(checked 0)
+set(functions_checked 0)
+foreach(src IN LISTS sources)
+  math(EXPR checked "${checked} + 1")
+  file(RELATIVE_PATH rel "${SOURCE_DIR}" "${src}")
+  file(READ "${src}" text)
+  string(REGEX MATCHALL "\n" newlines "${text}")
+  list(LENGTH newlines count)
+  if(NOT text MATCHES "\n$" AND NOT text STREQUAL "")
+    math(EXPR count "${count} + 1")  # a last line without its newline
+  endif()
+  if(count GREATER MAX_FILE_LINES)
+    list(APPEND failures "${rel}:${count}: ${count} lines (more than ${MAX_FILE_LINES})")
+  endif()
+  if(rel MATCHES "^lib/src/")
+    math(EXPR functions_checked "${functions_checked} + 1")
+    check_function_bodies("${src}" "${rel}" failures)
+  endif()
+endforeach()
+
+if(failures)
+  list(LENGTH failures n)
+  list(JOIN failures "\n  " text)
+  message(FATAL_ERROR "source_sizes: ${n} too long (files over ${MAX_FILE_LINES} lines under lib/, "
+                      "function bodies over ${MAX_FUNCTION_LINES} lines under lib/src/):\n  ${text}")
+endif()
+message(STATUS "source_sizes: ${checked} files under lib/ within ${MAX_FILE_LINES} lines, the function bodies of "
+               "${functions_checked} files under lib/src/ within ${MAX_FUNCTION_LINES} lines")
