@@ -26,7 +26,7 @@ const char* kUsage =
     "usage: panelrad <command> [options]\n"
     "commands:\n"
     "  check MESH | check --builtin cube|prism:K|tetrahedron|octahedron\n"
-    "      validate a closed convex polyhedral mesh (OFF or OBJ)\n"
+    "      validate a scene mesh (OFF or OBJ): convex (V = 1) or general (V computed)\n"
     "  cube [options]   the paper's cube example (Table 1; --help for options)\n"
     "  solve SCENE [options]   solve an OBJ+MTL or OFF+JSON scene, write CSV/PLY/VTK/PNG (--help)\n"
     "  version\n"
