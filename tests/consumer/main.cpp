@@ -6,12 +6,19 @@
 
 int main() {
   std::cout << "panelrad " << panelrad::version() << "\n";
-  panelrad::check_channel_names({"R", "G", "B"});  // from panelrad::io
   try {
-    (void)panelrad::geometry::read_mesh("/nonexistent/scene.off");
+    (void)panelrad::load_scene("/nonexistent/scene.off");
     return 1;  // a missing file must be refused
-  } catch (const panelrad::Error& e) {  // the root of the hierarchy catches a MeshError
+  } catch (const panelrad::Error& e) {  // the root of the hierarchy catches a SceneFileError
     std::cout << "refused: " << e.what() << "\n";
   }
-  return panelrad::version().empty() ? 1 : 0;
+  const panelrad::Scene cube = panelrad::load_scene("builtin:cube");  // rho 0, E 1: u = E = 1
+  panelrad::SolveOptions options;
+  options.level = 1;
+  const panelrad::SceneSolution solution = panelrad::solve_scene(cube, options);
+  solution.require_converged();
+  const std::vector<std::string> paths = panelrad::output_paths("cube", {"csv", "png"});  // from panelrad::io
+  std::cout << "n = " << solution.n << ", u[0] = " << solution.channels[0].radiosity[0] << ", " << paths.size()
+            << " outputs\n";
+  return solution.n == 48 && solution.channels[0].radiosity[0] == 1.0 && paths.size() == 2 ? 0 : 1;
 }
