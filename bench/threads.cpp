@@ -3,10 +3,10 @@
 // and the product K_n v (43), timed in pairs inside one process. A pair is three runs back to
 // back, their order rotated from pair to pair: one thread on the first processor, one thread on
 // the second, and two threads, one on each (every thread pinned). A virtual machine's speed
-// drifts from one minute to the next (its host's other tenants, the host's memory); a pair sees
+// drifts from one minute to the next (other work on the same processors and memory); a pair sees
 // the same drift, so the ratio of a pair, the faster lone processor's time over the two
 // threads' time, measures the threads, and the median over pairs is quoted with the least and
-// greatest pair. A host also lets other tenants share the core under one processor for seconds
+// greatest pair. Other work may also share the core under one processor for seconds
 // at a time, slowing that processor alone: the lone runs on each processor give each pair its
 // own ceiling, t / t_0 + t / t_1 with t the lesser of the two lone times t_0, t_1 (the speed-up
 // of perfectly divided work on those two processors as they ran), and the pair's ratio over it
@@ -21,12 +21,12 @@
 //     memory too. The first setup of a process, on memory new to it, is bench/product's.
 //   - Product: on the last operator set up, one product on each placement first (the product's
 //     workspace), then --pairs K pairs.
-//   - The host's share of the time taken from this machine (steal, /proc/stat) during the runs of
+//   - The time taken from this machine by other work (steal, /proc/stat) during the runs of
 //     each thread count, where the system reports it.
 //   - Before each pair, the machine's own ceiling (two_thread_ceiling): the speed-up that a fixed
 //     arithmetic workload gets from two threads at that moment, and each pair's ratio against it;
 //     the same for streaming memory (each thread summing an array of its own twice the size of
-//     the last-level cache), so that a pair's ratio can be read against what the host's memory
+//     the last-level cache), so that a pair's ratio can be read against what the memory
 //     system allowed two threads at that moment; before each setup pair also the first-touch
 //     ceiling, the same for touching new memory.
 //   usage: threads [--level L] [--pairs K] [--setup-pairs K] [--keep-memory] [--unpinned]
@@ -68,7 +68,7 @@ namespace {
 
 using bench::median;
 
-// Ticks of all CPUs and of steal (time the host gave to others) from the "cpu" line of
+// Ticks of all CPUs and of steal (time given to other work) from the "cpu" line of
 // /proc/stat; {0, 0} where that file is not there.
 struct CpuTicks {
   unsigned long long total = 0, steal = 0;
@@ -109,7 +109,7 @@ volatile long arithmetic_iterations = 4'000'000;
 }
 
 // Memory new to the process, first touched: 16 MiB mapped, one byte written per 4 KiB page (a
-// page fault each, the kernel zeroing the page and, in a virtual machine, the host backing it),
+// page fault each, the kernel zeroing the page and, in a virtual machine, the hypervisor backing it),
 // unmapped. The workload of the first-touch ceiling.
 double first_touch_work() {
   constexpr std::size_t kBytes = std::size_t{16} << 20, kPage = 4096;
@@ -190,9 +190,9 @@ void place(Placement where, const std::vector<int>& cpus) {
 // What the machine itself allows two threads at this moment for a workload: timed on one thread
 // alone (t), then on two threads at once, each timing its own copy (t_0, t_1), three times, the
 // medians taken; the ceiling t / t_0 + t / t_1 is the speed-up of perfectly divided work. For
-// arithmetic it is 2 when both processors run at full speed, less when the host lets another
-// tenant share the core under one of them; for first touches it is what the kernel's (and the
-// host's) page faults allow two threads of one process.
+// arithmetic it is 2 when both processors run at full speed, less when other work shares
+// the core under one of them; for first touches it is what the kernel's (and the
+// hypervisor's) page faults allow two threads of one process.
 template <class Work>
 double two_thread_ceiling(Work work) {
   static volatile double sink = 0;
@@ -269,8 +269,8 @@ void report(const char* what, const Runs (&runs)[3], const std::vector<double>& 
               what, median(one), median(two.seconds), median(one) / median(two.seconds), median(ratio), *lo, *hi,
               ratio.size(), alone.steal().c_str(), two.steal().c_str(), median(alone.faults) * 4096e-6,
               median(two.faults) * 4096e-6);
-  // The least time of each thread count: the machine's noise only ever adds time (a tenant, a
-  // slower host, steal), so the least of K runs is the estimate least disturbed by it.
+  // The least time of each thread count: the machine's noise only ever adds time (other work,
+  // steal), so the least of K runs is the estimate least disturbed by it.
   const double best_one = *std::min_element(one.begin(), one.end());
   const double best_two = *std::min_element(two.seconds.begin(), two.seconds.end());
   std::printf("  %-8s best of %zu: %.4f / %.4f s = %.2fx\n", "", one.size(), best_one, best_two, best_one / best_two);
@@ -281,7 +281,7 @@ void report(const char* what, const Runs (&runs)[3], const std::vector<double>& 
               "", median(runs[kFirstAlone].seconds), median(runs[kSecondAlone].seconds), median(own_ceiling), *olo, *ohi,
               median(own_efficiency), *elo, *ehi);
   // The pairs whose processors ran alone at nearly one speed (own ceiling >= 1.9x: within about
-  // 10% of each other): what two threads give where the host gave two whole processors.
+  // 10% of each other): what two threads give where the machine gave two whole processors.
   std::vector<double> even;
   for (std::size_t k = 0; k < ratio.size(); ++k)
     if (own_ceiling[k] >= 1.9) even.push_back(ratio[k]);
