@@ -27,6 +27,12 @@ from ._panelrad import (
     write_outputs,
 )
 
+# The classes print as panelrad.Scene, panelrad.MeshError, ... (defined in panelrad._panelrad).
+for _name in ("ChannelSolution", "Error", "MeshError", "Operator", "ResourceError", "Scene", "SceneFileError",
+              "Solution", "SolveResult", "Solver", "SolverError", "TextFileError"):
+    globals()[_name].__module__ = __name__
+del _name
+
 __all__ = [
     "ChannelSolution",
     "Error",
