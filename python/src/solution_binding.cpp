@@ -124,6 +124,19 @@ operator that ran, times and warnings. solution[name or index] is a ChannelSolut
                                return view_points(p.data(), p.size(), sizeof(geometry::Vec3), self);
                              },
                              "(n, 3) read-only view: the collocation points P_i (22).")
+      .def_property_readonly("element_vertices",
+                             [](py::object self) {
+                               const auto& t = self.cast<const SceneSolution&>().field.triangle;
+                               static_assert(sizeof(t[0]) == 3 * sizeof(geometry::Vec3));
+                               py::array_t<double> a({static_cast<py::ssize_t>(t.size()), py::ssize_t{3}, py::ssize_t{3}},
+                                                     {static_cast<py::ssize_t>(sizeof(t[0])),
+                                                      static_cast<py::ssize_t>(sizeof(geometry::Vec3)),
+                                                      py::ssize_t{sizeof(double)}},
+                                                     t.empty() ? nullptr : t[0][0].data(), self);
+                               a.attr("setflags")(py::arg("write") = false);
+                               return a;
+                             },
+                             "(n, 3, 3) read-only view: element corners, counter-clockwise seen from outside.")
       .def_property_readonly("normals",
                              [](py::object self) {
                                const auto& p = self.cast<const SceneSolution&>().field.inner_normal;
