@@ -63,6 +63,8 @@ SolveOptions make_solve_options(const SolverArguments& a) {
                                   std::to_string(*a.threads));
     set_threads(*a.threads);
   }
+  if (!a.progress.is_none() && !PyCallable_Check(a.progress.ptr()))
+    throw py::type_error("progress: expected a callable taking one str, or None");
   o.progress = interruptible_progress(a.progress);
   return o;
 }

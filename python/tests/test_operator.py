@@ -67,3 +67,23 @@ def test_element_views_are_read_only_and_consistent(solver):
     # The cube's surface area is 6.
     assert np.sum(solver.areas) == pytest.approx(6.0, rel=1e-14)
     assert set(np.unique(solver.facets)) == set(range(6))
+
+
+def test_views_and_operator_outlive_their_objects():
+    import gc
+
+    solver = panelrad.Solver(panelrad.paper_cube(), level=1, method="dense")
+    centroids, normals, result = solver.centroids, solver.normals, solver.solve()[0]
+    u, op = result.u, solver.operator
+    expected = (centroids.copy(), u.copy(), op.matvec(u))
+    del solver, result
+    gc.collect()
+    np.testing.assert_array_equal(centroids, expected[0])  # the views keep the solver alive
+    np.testing.assert_array_equal(u, expected[1])
+    np.testing.assert_array_equal(op.matvec(u), expected[2])  # so does the operator
+    assert normals.shape == (48, 3)
+
+
+def test_progress_must_be_callable():
+    with pytest.raises(TypeError, match="progress"):
+        panelrad.Solver(panelrad.paper_cube(), level=0, progress="stderr")
