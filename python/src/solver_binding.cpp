@@ -72,9 +72,8 @@ py::array_t<T> element_field(py::object self, const T geometry::Cluster::*member
   return view_values<T>(first, elements.size(), sizeof(geometry::Cluster), self);
 }
 
-}  // namespace
 
-void bind_solver(py::module_& m) {
+void bind_solve_result(py::module_& m) {
   py::class_<SolveResult, std::shared_ptr<SolveResult>>(m, "SolveResult", R"doc(
 One solve of (I - diag(rho) H) u = E, (32): the radiosity u at the collocation points and the
 iteration's report. Arrays are read-only views owned by this object.
@@ -116,51 +115,11 @@ iteration's report. Arrays are read-only views owned by this object.
                scientific(r.solve.residual) + ">";
       });
 
-  py::class_<SolverHolder, std::shared_ptr<SolverHolder>>(m, "Solver", R"doc(
-Solver(scene, *, level=None, max_elements=20000, method="auto", eta=None, degree=None, near=None,
-       mu=None, visibility="auto", solver="auto", tolerance=None, max_iterations=1000,
-       threads=None, progress=None)
+}
 
-The radiosity equation u - K u = E on one scene by centroid collocation (section 3): the setup
-(level L, n = n0 4^L elements; the operator H, dense (33) or fast (section 4) with its
-self-check) runs once here, with the GIL released; solve() then runs the iteration (32) for as
-many right-hand sides as wanted.
-
-level: refinement level (None: the largest with n <= max_elements). method: "auto" (the measured
-rule picks dense or fast and their parameters, tightened until the self-check passes), "dense"
-or "fast" with eta (admissibility (41)), degree (Taylor degree M (44)), near ("exact" or
-"quadrature") and mu as given. visibility: "auto" (V computed unless the scene is convex) or
-"occluded". solver: "auto", "neumann", "gmres" or "lu". tolerance: relative stopping tolerance
-(None: tied to the discretization error). threads: OpenMP threads for the whole process (None:
-unchanged). progress: callable(str) called at every setup stage and product.
-
-Ctrl-C (any Python signal handler that raises) interrupts the setup and the solves at the next
-stage line or product: the exception (KeyboardInterrupt) is raised and the solver is not built.
-The scene must not be modified from another thread while a solve runs.
-)doc")
-      .def(py::init([](std::shared_ptr<Scene> scene, std::optional<int> level, long max_elements, std::string method,
-                       std::optional<double> eta, std::optional<int> degree, std::optional<std::string> near,
-                       std::optional<int> mu, std::string visibility, std::string solver,
-                       std::optional<double> tolerance, int max_iterations, std::optional<int> threads,
-                       py::object progress) {
-             if (!scene) throw py::type_error("scene: expected a panelrad.Scene, got None");
-             const SolveOptions o = make_solve_options(solver_arguments(
-                 level, max_elements, std::move(method), eta, degree, std::move(near), mu, std::move(visibility),
-                 std::move(solver), tolerance, max_iterations, threads, std::move(progress)));
-             auto h = std::make_shared<SolverHolder>();
-             h->scene = scene;
-             py::gil_scoped_release release;
-             h->solver = std::make_unique<RadiositySolver>(*h->scene, o);
-             return h;
-           }),
-           py::arg("scene"), PANELRAD_SOLVER_KWARGS)
-      .def_property_readonly("n", [](const SolverHolder& h) { return h.solver->n(); }, "Number of elements.")
-      .def_property_readonly("level", [](const SolverHolder& h) { return h.solver->level(); })
-      .def_property_readonly("tolerance", [](const SolverHolder& h) { return h.solver->tolerance(); },
-                             "The iteration's relative tolerance.")
-      .def_property_readonly("info", [](const SolverHolder& h) { return info_dict(*h.solver); },
-                             "What the setup did (level, operator parameters, self-check, times), as a dict.")
-      .def_property_readonly("scene", [](const SolverHolder& h) { return std::const_pointer_cast<Scene>(h.scene); })
+// The elements of the level-L refinement as read-only views kept valid by the solver.
+void add_element_views(py::class_<SolverHolder, std::shared_ptr<SolverHolder>>& cls) {
+  cls
       .def_property_readonly(
           "centroids",
           [](py::object self) {
@@ -193,7 +152,57 @@ The scene must not be modified from another thread while a solve runs.
           "(n,) read-only view: element areas.")
       .def_property_readonly(
           "facets", [](py::object self) { return element_field<geometry::Index>(self, &geometry::Cluster::facet); },
-          "(n,) read-only view: the input facet of each element.")
+          "(n,) read-only view: the input facet of each element.");
+}
+
+void bind_solver_class(py::module_& m) {
+  py::class_<SolverHolder, std::shared_ptr<SolverHolder>> cls(m, "Solver", R"doc(
+Solver(scene, *, level=None, max_elements=20000, method="auto", eta=None, degree=None, near=None,
+       mu=None, visibility="auto", solver="auto", tolerance=None, max_iterations=1000,
+       threads=None, progress=None)
+
+The radiosity equation u - K u = E on one scene by centroid collocation (section 3): the setup
+(level L, n = n0 4^L elements; the operator H, dense (33) or fast (section 4) with its
+self-check) runs once here, with the GIL released; solve() then runs the iteration (32) for as
+many right-hand sides as wanted.
+
+level: refinement level (None: the largest with n <= max_elements). method: "auto" (the measured
+rule picks dense or fast and their parameters, tightened until the self-check passes), "dense"
+or "fast" with eta (admissibility (41)), degree (Taylor degree M (44)), near ("exact" or
+"quadrature") and mu as given. visibility: "auto" (V computed unless the scene is convex) or
+"occluded". solver: "auto", "neumann", "gmres" or "lu". tolerance: relative stopping tolerance
+(None: tied to the discretization error). threads: OpenMP threads for the whole process (None:
+unchanged). progress: callable(str) called at every setup stage and product.
+
+Ctrl-C (any Python signal handler that raises) interrupts the setup and the solves at the next
+stage line or product: the exception (KeyboardInterrupt) is raised and the solver is not built.
+The scene must not be modified from another thread while a solve runs.
+)doc");
+  cls.def(py::init([](std::shared_ptr<Scene> scene, std::optional<int> level, long max_elements, std::string method,
+                       std::optional<double> eta, std::optional<int> degree, std::optional<std::string> near,
+                       std::optional<int> mu, std::string visibility, std::string solver,
+                       std::optional<double> tolerance, int max_iterations, std::optional<int> threads,
+                       py::object progress) {
+             if (!scene) throw py::type_error("scene: expected a panelrad.Scene, got None");
+             const SolveOptions o = make_solve_options(solver_arguments(
+                 level, max_elements, std::move(method), eta, degree, std::move(near), mu, std::move(visibility),
+                 std::move(solver), tolerance, max_iterations, threads, std::move(progress)));
+             auto h = std::make_shared<SolverHolder>();
+             h->scene = scene;
+             py::gil_scoped_release release;
+             h->solver = std::make_unique<RadiositySolver>(*h->scene, o);
+             return h;
+           }),
+           py::arg("scene"), PANELRAD_SOLVER_KWARGS)
+      .def_property_readonly("n", [](const SolverHolder& h) { return h.solver->n(); }, "Number of elements.")
+      .def_property_readonly("level", [](const SolverHolder& h) { return h.solver->level(); })
+      .def_property_readonly("tolerance", [](const SolverHolder& h) { return h.solver->tolerance(); },
+                             "The iteration's relative tolerance.")
+      .def_property_readonly("info", [](const SolverHolder& h) { return info_dict(*h.solver); },
+                             "What the setup did (level, operator parameters, self-check, times), as a dict.")
+      .def_property_readonly("scene", [](const SolverHolder& h) { return std::const_pointer_cast<Scene>(h.scene); });
+  add_element_views(cls);
+  cls
       .def_property_readonly(
           "true_solution",
           [](py::object self) -> py::object {
@@ -283,6 +292,13 @@ The scene must not be modified from another thread while a solve runs.
         return "<panelrad.Solver: level " + std::to_string(i.level) + ", n " + std::to_string(i.n) + ", " +
                to_string(i.parameters.method) + " operator, visibility " + to_string(i.visibility) + ">";
       });
+}
+
+}  // namespace
+
+void bind_solver(py::module_& m) {
+  bind_solve_result(m);
+  bind_solver_class(m);
 }
 
 }  // namespace panelrad::python
