@@ -42,21 +42,23 @@ def test_sigint_from_another_thread_stops_a_running_solve():
     """The real Ctrl-C path: SIGINT arrives while the main thread is inside the library with the GIL
     released; the solver's next product runs the handler and stops. The solve cannot end by
     itself early: with rho = 0.999 the Neumann iteration's error shrinks by 0.999 a step, so
-    2000 steps leave it near 0.999^2000 = 0.14 of the first, far above the tolerance; ending well
-    before an uninterrupted run of the same length shows that the signal stopped it."""
+    4000 steps leave it near 0.999^4000 = 0.02 of the first, far above the tolerance. The signal
+    is sent a twentieth of an uninterrupted run's time after the start; ending before three
+    quarters of that time shows that the signal stopped it (the margin absorbs the other jobs'
+    load on a shared machine, which can delay the timer thread)."""
     import threading
     import time
 
     import numpy as np
 
     solver = panelrad.Solver(panelrad.paper_cube(), level=3, method="dense", solver="neumann",
-                             tolerance=1e-12, max_iterations=2000)
+                             tolerance=1e-12, max_iterations=4000)
     rho, E = np.full(solver.n, 0.999), np.ones(solver.n)
     t = time.perf_counter()
     full = solver.solve(rho, E)
     full_s = time.perf_counter() - t
-    assert not full.converged and full.iterations >= 2000
-    timer = threading.Timer(full_s / 10, os.kill, (os.getpid(), signal.SIGINT))
+    assert not full.converged and full.iterations >= 4000
+    timer = threading.Timer(full_s / 20, os.kill, (os.getpid(), signal.SIGINT))
     t = time.perf_counter()
     timer.start()
     try:
@@ -64,4 +66,4 @@ def test_sigint_from_another_thread_stops_a_running_solve():
             solver.solve(rho, E)
     finally:
         timer.join()
-    assert time.perf_counter() - t < full_s / 2
+    assert time.perf_counter() - t < 0.75 * full_s
