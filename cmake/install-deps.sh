@@ -15,6 +15,8 @@ packages=(
   libcli11-dev                           # command-line option parsing (cli/)
   gnuplot-nox                            # bench/plot_pareto.gp (error-time plot of bench/sweep)
   libopenmpi-dev openmpi-bin             # the MPI build (-DPANELRAD_MPI=ON) and its tests
+  pybind11-dev python3-dev               # the Python module (-DPANELRAD_PYTHON=ON)
+  python3-numpy python3-scipy python3-pytest  # its arrays, LinearOperator interface and tests
 )
 missing=()
 for p in "${packages[@]}"; do
