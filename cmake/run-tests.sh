@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
-# Installs the dependencies, builds panelrad (Release) and runs the whole test suite with ctest;
+# Installs the dependencies, builds panelrad (Release, with the Python module for Debian's
+# /usr/bin/python3) and runs the whole test suite with ctest (the C++ tests and pytest);
 # then runs the suite a second time under AddressSanitizer + UndefinedBehaviorSanitizer and fuzzes
 # the mesh reader for a bounded time. Fails when any step fails.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash cmake/install-deps.sh
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DPANELRAD_PYTHON=ON -DPython3_EXECUTABLE=/usr/bin/python3
 cmake --build build -j "$(nproc)"
 ctest --test-dir build --output-on-failure -j "$(nproc)"
 

@@ -1,7 +1,7 @@
 # Checks that every #include <panelrad/...> points down the layers, never up:
 #   support -> geometry -> quadrature -> lib: scene -> operator -> distributed -> solve -> io
 #   (and mpi, beside solve, on distributed) -> paper -> cli,
-#   examples, bench; and that nothing outside the tests includes the test-only oracles.
+#   examples, bench, python (on io); and that nothing outside the tests includes the test-only oracles.
 # Run: cmake -DSOURCE_DIR=<project> -P check_layers.cmake (fails with the offending file and line).
 cmake_minimum_required(VERSION 3.20)
 if(NOT SOURCE_DIR)
@@ -14,7 +14,7 @@ set(layer_folders
   lib/include/panelrad/scene lib/src/scene
   lib/include/panelrad/operator lib/src/operator lib/include/panelrad/distributed lib/src/distributed
   lib/include/panelrad/mpi lib/src/mpi lib/include/panelrad/solve lib/src/solve
-  lib/include/panelrad/io lib/src/io paper cli examples bench)
+  lib/include/panelrad/io lib/src/io paper cli examples bench python/src)
 set(allowed_support/include support)
 set(allowed_support/src support)
 set(allowed_geometry/include support geometry)
@@ -37,6 +37,7 @@ set(allowed_paper ${allowed_lib/src/io} paper)
 set(allowed_cli ${allowed_paper} mpi)
 set(allowed_examples ${allowed_lib/src/io})
 set(allowed_bench ${allowed_paper})
+set(allowed_python/src ${allowed_lib/src/io})
 
 set(failures "")
 set(checked 0)
