@@ -10,12 +10,12 @@
 
 namespace panelrad::python {
 
-SolverArguments solver_arguments(std::optional<int> level, long max_elements, std::string method,
+SolverArguments solver_arguments(std::optional<int> level, long max_elements, double accuracy, std::string method,
                                  std::optional<double> eta, std::optional<int> degree, std::optional<std::string> near,
                                  std::optional<int> mu, std::string visibility, std::string solver,
                                  std::optional<double> tolerance, int max_iterations, std::optional<int> threads,
                                  py::object progress) {
-  return SolverArguments{level,          max_elements,   std::move(method), eta,     degree,
+  return SolverArguments{level,          max_elements,   accuracy, std::move(method), eta,     degree,
                          std::move(near), mu,            std::move(visibility), std::move(solver), tolerance,
                          max_iterations, threads,        std::move(progress)};
 }
@@ -29,6 +29,10 @@ SolveOptions make_solve_options(const SolverArguments& a) {
   if (a.max_elements < 1 || a.max_elements > std::numeric_limits<geometry::Index>::max())
     throw std::invalid_argument("max_elements: must be in [1, 2^31), got " + std::to_string(a.max_elements));
   o.max_elements = static_cast<geometry::Index>(a.max_elements);
+  if (!(a.accuracy >= 0.05 && a.accuracy <= 1e6))
+    throw std::invalid_argument("accuracy: the far field's error allowed as a fraction of the discretization error, "
+                                "in [0.05, 1e6] (0.05 is the tightest measured), got " + std::to_string(a.accuracy));
+  o.accuracy = a.accuracy;
   o.op.method = parse_operator_method(a.method);
   const bool manual = a.eta || a.degree || a.near || a.mu;
   if (manual && o.op.method == OperatorMethod::automatic)

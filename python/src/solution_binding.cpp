@@ -161,12 +161,12 @@ operator that ran, times and warnings. solution[name or index] is a ChannelSolut
 
   m.def(
       "solve_scene",
-      [](std::shared_ptr<Scene> scene, std::optional<int> level, long max_elements, std::string method,
+      [](std::shared_ptr<Scene> scene, std::optional<int> level, long max_elements, double accuracy, std::string method,
          std::optional<double> eta, std::optional<int> degree, std::optional<std::string> near, std::optional<int> mu,
          std::string visibility, std::string solver, std::optional<double> tolerance, int max_iterations,
          std::optional<int> threads, py::object progress) {
         if (!scene) throw py::type_error("scene: expected a panelrad.Scene, got None");
-        const SolveOptions o = make_solve_options(solver_arguments(level, max_elements, std::move(method), eta, degree,
+        const SolveOptions o = make_solve_options(solver_arguments(level, max_elements, accuracy, std::move(method), eta, degree,
                                                                    std::move(near), mu, std::move(visibility),
                                                                    std::move(solver), tolerance, max_iterations,
                                                                    threads, std::move(progress)));

@@ -157,7 +157,7 @@ void add_element_views(py::class_<SolverHolder, std::shared_ptr<SolverHolder>>& 
 
 void bind_solver_class(py::module_& m) {
   py::class_<SolverHolder, std::shared_ptr<SolverHolder>> cls(m, "Solver", R"doc(
-Solver(scene, *, level=None, max_elements=20000, method="auto", eta=None, degree=None, near=None,
+Solver(scene, *, level=None, max_elements=20000, accuracy=0.05, method="auto", eta=None, degree=None, near=None,
        mu=None, visibility="auto", solver="auto", tolerance=None, max_iterations=1000,
        threads=None, progress=None)
 
@@ -167,7 +167,8 @@ self-check) runs once here, with the GIL released; solve() then runs the iterati
 many right-hand sides as wanted.
 
 level: refinement level (None: the largest with n <= max_elements). method: "auto" (the measured
-rule picks dense or fast and their parameters, tightened until the self-check passes), "dense"
+rule picks dense or fast and their parameters so that the far field's error stays within
+`accuracy` times the discretization error, tightened until the self-check passes), "dense"
 or "fast" with eta (admissibility (41)), degree (Taylor degree M (44)), near ("exact" or
 "quadrature") and mu as given. visibility: "auto" (V computed unless the scene is convex) or
 "occluded". solver: "auto", "neumann", "gmres" or "lu". tolerance: relative stopping tolerance
@@ -178,14 +179,14 @@ Ctrl-C (any Python signal handler that raises) interrupts the setup and the solv
 stage line or product: the exception (KeyboardInterrupt) is raised and the solver is not built.
 The scene must not be modified from another thread while a solve runs.
 )doc");
-  cls.def(py::init([](std::shared_ptr<Scene> scene, std::optional<int> level, long max_elements, std::string method,
+  cls.def(py::init([](std::shared_ptr<Scene> scene, std::optional<int> level, long max_elements, double accuracy, std::string method,
                        std::optional<double> eta, std::optional<int> degree, std::optional<std::string> near,
                        std::optional<int> mu, std::string visibility, std::string solver,
                        std::optional<double> tolerance, int max_iterations, std::optional<int> threads,
                        py::object progress) {
              if (!scene) throw py::type_error("scene: expected a panelrad.Scene, got None");
              const SolveOptions o = make_solve_options(solver_arguments(
-                 level, max_elements, std::move(method), eta, degree, std::move(near), mu, std::move(visibility),
+                 level, max_elements, accuracy, std::move(method), eta, degree, std::move(near), mu, std::move(visibility),
                  std::move(solver), tolerance, max_iterations, threads, std::move(progress)));
              auto h = std::make_shared<SolverHolder>();
              h->scene = scene;

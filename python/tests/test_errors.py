@@ -98,6 +98,8 @@ def test_solver_arguments(cube_arrays):
         panelrad.Solver(scene, level=0, method="fastest")
     with pytest.raises(ValueError, match="need method"):
         panelrad.Solver(scene, level=0, eta=0.3)
+    with pytest.raises(ValueError, match="accuracy"):
+        panelrad.Solver(scene, level=0, accuracy=0.01)  # tighter than any measured margin
     solver = panelrad.Solver(scene, level=1, method="dense")
     with pytest.raises(ValueError, match=r"E: expected shape \(48,\)"):
         solver.solve(np.ones(47))
@@ -131,3 +133,15 @@ def test_scene_files(tmp_path, source_dir):
         panelrad.load_scene(bad)
     scene = panelrad.load_scene(source_dir / "examples" / "scenes" / "cornell_box.obj")
     assert scene.channels == ["R", "G", "B"] and scene.shape == "general"
+
+
+def test_accuracy_loosens_the_automatic_far_field():
+    """accuracy is the far field's error allowed as a fraction of the discretization error: the
+    paper's cube at level 5 takes the fast method, and a looser accuracy never asks for a higher
+    Taylor degree or a smaller eta than the default 0.05 (choose_parameters' rule is monotone)."""
+    cube = panelrad.paper_cube()
+    tight = panelrad.Solver(cube, level=5).info
+    loose = panelrad.Solver(cube, level=5, accuracy=2.0).info
+    assert tight["method"] == "fast"
+    assert loose["method"] == "fast"
+    assert (loose["degree"], -loose["eta"]) < (tight["degree"], -tight["eta"])

@@ -123,8 +123,16 @@ TEST(AutoParameters, DeterministicAndValid) {
       EXPECT_GE(a.degree, 0);
       EXPECT_LE(a.degree, 12);
     }
-    // A looser margin never gives a different (less safe) choice than the measured 5%.
-    EXPECT_EQ(choose_parameters(s, 0.2), a);
+    // A looser margin m scales delta* by m / 0.05 (so the self-check's threshold too) and takes
+    // the setting of lambda - log2(m / 0.05): never a stricter one (M no higher, eta no smaller).
+    const OperatorOptions loose = choose_parameters(s, 0.2);
+    if (a.method == OperatorMethod::fast) {
+      ASSERT_EQ(loose.method, OperatorMethod::fast) << "level " << level;
+      EXPECT_LE(loose.degree, a.degree) << "level " << level;
+      EXPECT_GE(loose.eta, a.eta) << "level " << level;
+    }
+    EXPECT_DOUBLE_EQ(self_check_threshold(s, 0.5, 0.2), 4 * self_check_threshold(s, 0.5));
+    EXPECT_THROW(self_check_threshold(s, 0.5, 0.04), std::invalid_argument);
   }
   // The smallest sizes are solved densely, the large ones with the fast method.
   EXPECT_EQ(choose_parameters(problem_size(cube.mesh(), 1)).method, OperatorMethod::dense);

@@ -114,7 +114,7 @@ OperatorOptions choose_parameters(const ProblemSize& size, double margin, double
   OperatorOptions o = dense;
   o.method = OperatorMethod::fast;
   // delta* halves per level and shrinks by the amplification: a target log2 A levels finer.
-  const double lambda = size.equivalent_level() + std::log2(amplification);
+  const double lambda = size.equivalent_level() + std::log2(amplification) - std::log2(margin / 0.05);
   // Each setting while its self-check on the cube (header) stays below delta* = 1.02e-3 2^-lambda.
   if (lambda < 2.5) {  // check 1.5e-4 (worst: cos 7x + sin(5y) z)
     o.eta = 0.5;
@@ -154,11 +154,13 @@ double fast_to_dense_work(const ProblemSize& size, double eta, int degree, Visib
   return seen * far_pairs * num_taylor_terms(degree) / n;
 }
 
-double self_check_threshold(const ProblemSize& size, double rho_max) {
+double self_check_threshold(const ProblemSize& size, double rho_max, double margin) {
   if (!(size.mesh_size > 0) || !(size.diameter > 0))
     throw std::invalid_argument("self_check_threshold: mesh size and diameter must be positive");
-  // 5% of the discretization error scale 0.025 h/diam (Table 1), over the amplification (header).
-  return 0.05 * kDiscretizationErrorPerRelativeH * size.mesh_size / size.diameter / conditioning_factor(rho_max);
+  if (!(margin >= 0.05) || !std::isfinite(margin))
+    throw std::invalid_argument("self_check_threshold: margin " + std::to_string(margin) + " is below the measured 5%");
+  // margin (5%) of the discretization error scale 0.025 h/diam (Table 1), over the amplification.
+  return margin * kDiscretizationErrorPerRelativeH * size.mesh_size / size.diameter / conditioning_factor(rho_max);
 }
 
 OperatorOptions tighten_parameters(const OperatorOptions& options) {

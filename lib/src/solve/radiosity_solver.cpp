@@ -101,7 +101,8 @@ void RadiositySolver::setup() {
 void RadiositySolver::choose_parameters_and_plan() {
   const double rho_max = std::isnan(info_.conditioning_reflectivity) ? 0.0 : info_.conditioning_reflectivity;
   if (options_.op.method == OperatorMethod::automatic) {
-    info_.parameters = choose_parameters(problem_size(scene_.mesh(), info_.level), 0.05, rho_max, info_.visibility);
+    info_.parameters = choose_parameters(problem_size(scene_.mesh(), info_.level), options_.accuracy, rho_max,
+                                          info_.visibility);
     info_.parameters.local = options_.op.local;  // target clusters on or off, as asked
   } else {
     info_.parameters = options_.op;
@@ -236,7 +237,8 @@ void RadiositySolver::build_operator() {
   const bool tighten = options_.op.method == OperatorMethod::automatic || options_.tighten_on_failed_check;
   if (op.method == OperatorMethod::fast)
     info_.self_check_threshold =
-        self_check_threshold(problem_size(scene_.mesh(), info_.level), info_.conditioning_reflectivity);
+        self_check_threshold(problem_size(scene_.mesh(), info_.level), info_.conditioning_reflectivity,
+                             options_.op.method == OperatorMethod::automatic ? options_.accuracy : 0.05);
   std::string why = tighten ? "(nothing stricter to try)" : "(manual parameters, not tightened)";
   if (op.method == OperatorMethod::fast && tighten && info_.visibility == Visibility::occluded)
     why = "(none of the stricter settings probed passes)";

@@ -141,8 +141,10 @@ inline constexpr double kPaperCubeMaxReflectivity = 0.5;
 
 /// The rule above, at lambda_eff = lambda + log2 conditioning_factor(rho_max), for a scene whose
 /// line of sight is `visibility` (the solver's, resolved: unoccluded or occluded). `margin` is the
-/// accepted excess over the discretization error; only margins >= 0.05 were measured (a looser
-/// margin gets the same, safe choice); a smaller one, a size that is not finite and positive,
+/// accepted excess over the discretization error: delta* scales with it, so lambda_eff drops by
+/// log2(margin / 0.05) (a looser margin takes the setting measured for a coarser level, whose
+/// self-check against self_check_threshold(size, rho_max, margin) still decides); only margins
+/// >= 0.05 were measured, and a smaller one, a size that is not finite and positive,
 /// roots outside [1, n], rho_max outside [0, 1), or Visibility::automatic, is a
 /// std::invalid_argument.
 OperatorOptions choose_parameters(const ProblemSize& size, double margin = 0.05,
@@ -156,10 +158,12 @@ OperatorOptions choose_parameters(const ProblemSize& size, double margin = 0.05,
 double fast_to_dense_work(const ProblemSize& size, double eta, int degree, Visibility visibility);
 
 /// delta* of the header: the largest FastOperator::self_check relative product error accepted
-/// for automatic parameters, 0.05 * 0.025 (h/diam) / conditioning_factor(rho_max), so that the
-/// bound delta A(rho_max) on the solution's relative deviation stays within 5% of the
-/// discretization error scale 0.025 h/diam. A check above it makes --accuracy auto tighten.
-double self_check_threshold(const ProblemSize& size, double rho_max = kPaperCubeMaxReflectivity);
+/// for automatic parameters, margin * 0.025 (h/diam) / conditioning_factor(rho_max), so that the
+/// bound delta A(rho_max) on the solution's relative deviation stays within `margin` (default
+/// 5%) of the discretization error scale 0.025 h/diam. A check above it makes --accuracy auto
+/// tighten. A margin below 0.05 or not finite is a std::invalid_argument.
+double self_check_threshold(const ProblemSize& size, double rho_max = kPaperCubeMaxReflectivity,
+                            double margin = 0.05);
 
 /// One step stricter than `options` (for a self-check that failed): dense stays dense; the fast
 /// method first raises M by one up to 6, then lowers eta along 0.5, 0.3, 0.2, 0.1 (keeping M).

@@ -8,7 +8,7 @@
 //
 // Setup (the constructor), in this order:
 //   1. the level L: options.level, or the largest with n = n0 4^L <= options.max_elements;
-//   2. the operator's parameters: automatic: choose_parameters(problem_size, 0.05, rho_max,
+//   2. the operator's parameters: automatic: choose_parameters(problem_size, options.accuracy, rho_max,
 //      visibility), rho_max the largest reflectivity over all channels (the conditioning
 //      1 / (1 - rho_max) of every channel's equation, (11)), visibility the resolved line of sight
 //      (dense where the far field would be no cheaper than the matrix); dense or fast:
@@ -85,6 +85,9 @@ struct SolveOptions {
     o.method = OperatorMethod::automatic;
     return o;
   }();
+  /// Automatic parameters (op.method automatic): the far field's error allowed, as a fraction of
+  /// the discretization error (choose_parameters' margin; >= 0.05, the tightest measured).
+  double accuracy = 0.05;
   /// Fast method with manual parameters: tighten them after a failed self-check, as automatic
   /// parameters always are (step 6).
   bool tighten_on_failed_check = false;
