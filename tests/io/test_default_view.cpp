@@ -8,6 +8,8 @@
 #include <panelrad/io/scene_output.hpp>
 #include <panelrad/solve/scene_solver.hpp>
 
+#include "unit_cube_elements.hpp"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -152,33 +154,15 @@ ElementField lit_body(int m) {
   ElementField f;
   f.channels = {"u"};
   std::vector<double> u, e;
-  for (int facet = 0; facet < 6; ++facet) {
-    const int axis = facet / 2;
-    const double side = facet % 2;
-    Vec3 outward = Vec3::Zero();
-    outward[axis] = side == 0 ? -1.0 : 1.0;
-    const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
-    const auto corner = [&](int i, int j) {
-      Vec3 p;
-      p[axis] = side;
-      p[a1] = static_cast<double>(i) / m;
-      p[a2] = static_cast<double>(j) / m;
-      return p;
-    };
-    for (int i = 0; i < m; ++i)
-      for (int j = 0; j < m; ++j) {
-        const Vec3 q[4] = {corner(i, j), corner(i + 1, j), corner(i + 1, j + 1), corner(i, j + 1)};
-        for (const auto& t : {std::array<Vec3, 3>{q[0], q[1], q[2]}, std::array<Vec3, 3>{q[0], q[2], q[3]}}) {
-          f.triangle.push_back(t);
-          f.inner_normal.push_back(outward);
-          f.centroid.push_back((t[0] + t[1] + t[2]) / 3.0);
-          f.area.push_back(0.5 * (t[1] - t[0]).cross(t[2] - t[0]).norm());
-          f.facet.push_back(facet);
-          e.push_back(facet == 1 ? 1.0 : 0.0);
-          u.push_back(facet == 1 ? 1.0 : 0.1 + 0.01 * facet);
-        }
-      }
-  }
+  panelrad::testing::for_each_unit_cube_triangle(m, [&](int facet, const Vec3& outward, const std::array<Vec3, 3>& t) {
+    f.triangle.push_back(t);
+    f.inner_normal.push_back(outward);
+    f.centroid.push_back((t[0] + t[1] + t[2]) / 3.0);
+    f.area.push_back(0.5 * (t[1] - t[0]).cross(t[2] - t[0]).norm());
+    f.facet.push_back(facet);
+    e.push_back(facet == 1 ? 1.0 : 0.0);
+    u.push_back(facet == 1 ? 1.0 : 0.1 + 0.01 * facet);
+  });
   const auto vec = [](const std::vector<double>& v) { return Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()))); };
   f.rho = {Eigen::VectorXd::Constant(static_cast<Eigen::Index>(u.size()), 0.5)};
   f.emission = {vec(e)};

@@ -3,6 +3,8 @@
 #include <panelrad/io/scene_output.hpp>
 #include <panelrad/io/text_output.hpp>
 
+#include "unit_cube_elements.hpp"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -40,39 +42,18 @@ ElementField cube(int m, std::vector<std::string> channels, U value, E emit) {
   ElementField f;
   f.channels = channels;
   std::vector<std::vector<double>> u(channels.size()), e(channels.size()), rho(channels.size());
-  for (int facet = 0; facet < 6; ++facet) {
-    const int axis = facet / 2;
-    const double side = facet % 2;
-    Vec3 outward = Vec3::Zero();
-    outward[axis] = side == 0 ? -1.0 : 1.0;
-    const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
-    const auto corner = [&](int i, int j) {
-      Vec3 p;
-      p[axis] = side;
-      p[a1] = static_cast<double>(i) / m;
-      p[a2] = static_cast<double>(j) / m;
-      return p;
-    };
-    for (int i = 0; i < m; ++i)
-      for (int j = 0; j < m; ++j) {
-        const Vec3 q[4] = {corner(i, j), corner(i + 1, j), corner(i + 1, j + 1), corner(i, j + 1)};
-        for (const auto& t : {std::array<Vec3, 3>{q[0], q[1], q[2]},
-                              std::array<Vec3, 3>{q[0], q[2], q[3]}}) {
-          std::array<Vec3, 3> tri = t;
-          if ((tri[1] - tri[0]).cross(tri[2] - tri[0]).dot(outward) < 0) std::swap(tri[1], tri[2]);
-          f.triangle.push_back(tri);
-          f.inner_normal.push_back(-outward);
-          f.centroid.push_back((tri[0] + tri[1] + tri[2]) / 3.0);
-          f.area.push_back(0.5 / (m * m));
-          f.facet.push_back(facet);
-          for (std::size_t c = 0; c < channels.size(); ++c) {
-            u[c].push_back(value(facet, c));
-            e[c].push_back(emit(facet, c));
-            rho[c].push_back(0.1 * (facet + 1) + 0.01 * static_cast<double>(c));
-          }
-        }
-      }
-  }
+  panelrad::testing::for_each_unit_cube_triangle(m, [&](int facet, const Vec3& outward, const std::array<Vec3, 3>& tri) {
+    f.triangle.push_back(tri);
+    f.inner_normal.push_back(-outward);
+    f.centroid.push_back((tri[0] + tri[1] + tri[2]) / 3.0);
+    f.area.push_back(0.5 / (m * m));
+    f.facet.push_back(facet);
+    for (std::size_t c = 0; c < channels.size(); ++c) {
+      u[c].push_back(value(facet, c));
+      e[c].push_back(emit(facet, c));
+      rho[c].push_back(0.1 * (facet + 1) + 0.01 * static_cast<double>(c));
+    }
+  });
   for (std::size_t c = 0; c < channels.size(); ++c) {
     f.radiosity.push_back(Eigen::Map<Eigen::VectorXd>(u[c].data(), static_cast<Eigen::Index>(u[c].size())));
     f.emission.push_back(Eigen::Map<Eigen::VectorXd>(e[c].data(), static_cast<Eigen::Index>(e[c].size())));

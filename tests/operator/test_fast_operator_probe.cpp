@@ -12,6 +12,8 @@
 #include "occluded_scenes.hpp"
 #include "test_scenes.hpp"
 
+#include "self_check_expectations.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -36,16 +38,7 @@ FastOptions options(double eta, int degree, std::shared_ptr<const geometry::Occl
   return o;
 }
 
-void expect_same_check(const FastSelfCheck& a, const FastSelfCheck& b) {
-  EXPECT_EQ(a.relative_error, b.relative_error);
-  EXPECT_EQ(a.sampled_rows, b.sampled_rows);
-  ASSERT_EQ(a.vectors.size(), b.vectors.size());
-  for (std::size_t k = 0; k < a.vectors.size(); ++k) {
-    EXPECT_EQ(a.vectors[k].name, b.vectors[k].name);
-    EXPECT_EQ(a.vectors[k].relative_error, b.vectors[k].relative_error) << a.vectors[k].name;
-    EXPECT_EQ(a.vectors[k].row, b.vectors[k].row) << a.vectors[k].name;
-  }
-}
+using testing::expect_same_check;
 
 void expect_probe_matches_whole(const Collocation& col, FastOptions o, int samples) {
   const FastOperator whole(col, o);
