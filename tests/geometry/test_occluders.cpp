@@ -26,6 +26,7 @@ namespace {
 
 using namespace panelrad::geometry;
 using Tri = std::array<Vec3, 3>;
+using panelrad::parallel_for;
 
 TriangleMesh mesh_of(const std::vector<Tri>& tris) {
   TriangleMesh m;
