@@ -100,19 +100,20 @@ int clip_to_half_plane(const Vec2* in, int n, const Vec2& o, const Vec2& m, doub
 /// shadow's edge lines: the part of a piece outside an edge's line is a piece of the difference,
 /// the part inside goes on to the next edge, and what is inside every edge is covered. Corners
 /// within `tol` of a line count as on it (no sliver pieces); pieces of area at most `min_area` are
-/// dropped.
-void subtract_convex(const Pieces& in, const Vec2* poly, int n, double tol, double min_area, Pieces& out);
+/// dropped. `covered` given: the parts inside every edge line (of positive area) are appended to it.
+void subtract_convex(const Pieces& in, const Vec2* poly, int n, double tol, double min_area, Pieces& out,
+                     Pieces* covered = nullptr);
 
 /// The same with the shadow given by its edge lines longer than tol (a point line_at[j] and the
 /// unit normal line_in[j] towards the inside, in counter-clockwise order) and its box [slo, shi].
 void subtract_convex(const Pieces& in, const Vec2* line_at, const Vec2* line_in, int n_lines, const Vec2& slo,
-                     const Vec2& shi, double tol, double min_area, Pieces& out);
+                     const Vec2& shi, double tol, double min_area, Pieces& out, Pieces* covered = nullptr);
 
 /// One piece (corners piece[0, np), area piece_area) minus the shadow given by its edge lines, the
 /// pieces of the difference appended to out (subtract_convex does this for each piece of `in`).
 void subtract_convex_from_piece(const Vec2* piece, int np, double piece_area, const Vec2* line_at,
                                 const Vec2* line_in, int n_lines, const Vec2& slo, const Vec2& shi, double tol,
-                                double min_area, Pieces& out);
+                                double min_area, Pieces& out, Pieces* covered = nullptr);
 
 double polygon_area(const Vec2* p, int n);
 

@@ -62,11 +62,23 @@ struct VisiblePart {
   std::vector<Vec3> points;              ///< the pieces' corners, piece after piece, counter-clockwise about nQ
   std::vector<std::uint32_t> piece_end;  ///< piece k is points[piece_end[k-1], piece_end[k]) (piece_end[-1] = 0)
   double area = 0;                       ///< total area of the pieces
+  /// tau lies wholly in front of P's plane (nothing of it is cut away there): the pieces and the
+  /// covered pieces below then make up tau.
+  bool whole_front = false;
+  /// The covered part: the parts of tau's front part inside the shadows, convex pieces as above,
+  /// each inside one shadow. With the pieces it makes up the front part, up to slivers within the
+  /// margins of the rounding policy: an integral over the visible part is also the integral over
+  /// tau minus that over the covered part, whose pieces' edges lie inside the shadows.
+  std::vector<Vec3> covered_points;
+  std::vector<std::uint32_t> covered_end;
   std::size_t num_pieces() const { return piece_end.size(); }
   void clear() {
     points.clear();
     piece_end.clear();
     area = 0;
+    whole_front = false;
+    covered_points.clear();
+    covered_end.clear();
   }
 };
 

@@ -66,11 +66,11 @@ inline double form_factor(const Vec3& P, const Vec3& nP, const Vec3& a, const Ve
 //   h = N.(P - a) / |N|,  e_k = N.((V_k - P) x (V_k+1 - P)) / (L_k |N|),  N = (b - a) x (c - a)
 // (accurate_heights), which leaves each term accurate to a few eps; elsewhere the double path is
 // kept (its error is then at most a few eps kNearEdgeRatio in each term).
-namespace detail {
-
 /// P within R / kNearEdgeRatio of an edge's line (R its distance from the edge's corners): h and
 /// the e_k are recomputed by accurate_heights.
 inline constexpr double kNearEdgeRatio = 64;
+
+namespace detail {
 
 /// The height h of P over the plane of the triangle (V0, V1, V2) (counter-clockwise about its
 /// front normal, h > 0 in front) and the signed distances e[k] of P's foot inside the edge lines
@@ -114,7 +114,7 @@ inline double form_factor(const Vec3& P, const Vec3& nP, const Vec3& a, const Ve
     s2[k] = w1.dot(tau);
     nPnk[k] = nP.dot(nk);
     D[k] = std::sqrt(e[k] * e[k] + h * h);
-    near_edge |= D[k] * detail::kNearEdgeRatio < std::max(w0.cwiseAbs().maxCoeff(), w1.cwiseAbs().maxCoeff());
+    near_edge |= D[k] * kNearEdgeRatio < std::max(w0.cwiseAbs().maxCoeff(), w1.cwiseAbs().maxCoeff());
   }
   if (near_edge) {
     detail::accurate_heights(P, *V[0], *V[1], *V[2], L, h, e);
