@@ -35,6 +35,18 @@ using Tree = CGAL::AABB_tree<AabbTraits>;
 
 K::Point_3 point(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
+}  // namespace
+
+namespace occluder_detail {
+
+bool strictly_in_front(const Vec3& P, const std::array<Vec3, 3>& t) {
+  return CGAL::orientation(point(t[0]), point(t[1]), point(t[2]), point(P)) == CGAL::POSITIVE;
+}
+
+}  // namespace occluder_detail
+
+namespace {
+
 /// The segment PQ meets the box widened by m (slab test). The widening covers the rounding of the
 /// slab parameters (relative 1e-16), so that no face the segment crosses is missed.
 bool segment_meets_box(const Vec3& P, const Vec3& Q, const CGAL::Bbox_3& b, double m) {
@@ -279,8 +291,8 @@ double Occluders::diameter() const { return impl_->diameter; }
 void Occluders::candidates(const Vec3& P, const Vec3& nP, const std::array<Vec3, 3>& tau, const Vec3& nQ,
                            std::vector<Index>& out) const {
   Shaft s;
-  if (!make_shaft(P, nP, tau, nQ, impl_->margin, s)) {
-    out.clear();  // nothing of tau is seen: no face meets the (empty) shaft
+  if (!make_shaft(P, nP, tau, nQ, impl_->margin, s) || s.grazing) {
+    out.clear();  // nothing of tau is seen: no face meets the (empty) shaft; or none is tested
     return;
   }
   complete_shaft(s);
@@ -294,6 +306,7 @@ ShaftClass Occluders::classify(const Vec3& P, const Vec3& nP, const std::array<V
   if (part) part->clear();
   Shaft s;
   if (!make_shaft(P, nP, tau, nQ, impl_->margin, s)) return ShaftClass::hidden;
+  if (s.grazing) among = {};
   if (among.empty() && !s.straddles) return ShaftClass::full;  // the four plane tests decide
   complete_shaft(s);
   thread_local std::vector<Shadow> shadows;
@@ -325,6 +338,7 @@ ShaftClass Occluders::classify(const Vec3& P, const Vec3& nP, const std::array<V
   plane.nQ = s.nQ;
   plane.height = s.height;
   plane.seen = true;
+  if (s.grazing) among = {};
   if (among.empty() && !s.straddles) return ShaftClass::full;  // the four plane tests decide
   impl_->shadows_of(s, among, plane.faces, plane.shadows);
   for (PlaneShadow& sh : plane.shadows) {
@@ -358,7 +372,8 @@ ShaftClass Occluders::classify_within(const ShadowPlane& plane, const std::array
   if (!plane.seen) return ShaftClass::hidden;
   const double m = impl_->margin;
   // sub in T's frame, counter-clockwise about nQ, and its corners' distances from P's plane. P's
-  // height over sub's plane is T's (plane.height > margin, as make_shaft checked).
+  // height over sub's plane is T's (plane.height > margin, or P strictly in front within the
+  // margin, as make_shaft checked; then T has no shadows).
   std::array<Vec2, 3> c;
   std::array<double, 3> tP;
   for (int i = 0; i < 3; ++i) {
@@ -531,6 +546,7 @@ void Occluders::visible_part(const Vec3& P, const Vec3& nP, const std::array<Vec
   out.clear();
   Shaft s;
   if (!make_shaft(P, nP, tau, nQ, impl_->margin, s)) return;
+  if (s.grazing) among = {};
   complete_shaft(s);
   thread_local std::vector<Index> meeting;
   thread_local std::vector<Shadow> shadows;

@@ -34,7 +34,10 @@ struct Shaft {
   std::array<Vec3, 3> t;           ///< tau's corners, counter-clockwise about nQ
   Vec3 nQ;                         ///< unit geometric normal of tau, on the side of the given nQ
   std::array<Vec3, 3> side_n;      ///< unit inward normals of the planes through P and (t[i], t[i+1])
-  double height = 0;               ///< distance of P from tau's plane (> margin)
+  double height = 0;               ///< distance of P from tau's plane (> margin unless grazing)
+  /// P within the margin of tau's plane but strictly in front of it (exact orientation): the shaft
+  /// is thinner than the margin, no face is tested against it (see make_shaft).
+  bool grazing = false;
   std::array<double, 3> tP{};      ///< signed distances of tau's corners from P's plane
   bool straddles = false;          ///< tau crosses P's plane: its part behind is cut away
   Vec3 lo, hi;                     ///< bounding box of P and tau
@@ -44,8 +47,13 @@ struct Shaft {
   Vec3 u, w;                       ///< orthonormal frame of tau's plane at t[0], (u, w, nQ) right-handed
 };
 
-/// Sets up tau's and P's planes of the shaft; false when nothing of tau is seen whatever the occluders (P on or behind
-/// tau's plane, tau on or behind P's plane, both by the margin).
+/// P strictly in front of the plane of tau = (t0, t1, t2), counter-clockwise about its front
+/// normal: the exact sign of the orientation determinant (occluders.cpp, CGAL's filtered predicate).
+bool strictly_in_front(const Vec3& P, const std::array<Vec3, 3>& t);
+
+/// Sets up tau's and P's planes of the shaft; false when nothing of tau is seen whatever the
+/// occluders (P on or behind tau's plane, tau on or behind P's plane, both by the margin, except
+/// that P within the margin but strictly in front of tau's plane sees it: s.grazing).
 bool make_shaft(const Vec3& P, const Vec3& nP, const std::array<Vec3, 3>& tau, const Vec3& nQ, double margin,
                 Shaft& s);
 

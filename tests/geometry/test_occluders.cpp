@@ -425,6 +425,38 @@ TEST(Occluders, AWallStandingOnTheFloorHidesOnlyWhatIsBehindIt) {
   EXPECT_FALSE(occ.visible(P, Vec3(1.01, 1.5, 0)));
 }
 
+// A point a gap 1e-11 above the edge of a box's top, the side of the box below that edge: P's
+// distance from the side's plane (y = 0.6) is below the visibility margin, and its exact side
+// decides. One double above 0.6 (1.1e-16 in front) it sees the side, whose factor is that
+// distance over twice the gap (5.6e-6, what the top misses of its half); on the plane or behind
+// it, nothing. The box's top, through the shaft's edge only, is no occluder of it.
+TEST(Occluders, APointWithinTheMarginInFrontOfAPlaneSeesItsFace) {
+  const double top = 1 - 1e-11;
+  const Tri side_a = {Vec3(0.35, 0.6, 0.6), Vec3(0.65, 0.6, 0.6), Vec3(0.65, 0.6, top)};
+  const Tri side_b = {Vec3(0.35, 0.6, 0.6), Vec3(0.65, 0.6, top), Vec3(0.35, 0.6, top)};
+  const Tri top_a = {Vec3(0.35, 0.3, top), Vec3(0.65, 0.3, top), Vec3(0.65, 0.6, top)};
+  const Tri top_b = {Vec3(0.35, 0.3, top), Vec3(0.65, 0.6, top), Vec3(0.35, 0.6, top)};
+  const std::vector<Tri> tris = {side_a, side_b, top_a, top_b};
+  const Occluders occ(mesh_of(tris));
+  const Vec3 down(0, 0, -1), out(0, 1, 0);
+  std::vector<Index> among, meeting;
+  for (const double y : {std::nextafter(0.6, 1.0), 0.6, std::nextafter(0.6, 0.0)}) {
+    const Vec3 P(0.64166666666666661, y, 1);
+    const ShaftClass expected = y > 0.6 ? ShaftClass::full : ShaftClass::hidden;
+    for (const Index t : {0, 1}) {
+      occ.candidates(P, down, tris[t], out, among);
+      EXPECT_TRUE(among.empty()) << "y " << y << ", face " << t;
+      EXPECT_EQ(occ.classify(P, down, tris[t], out, all_indices(occ), meeting), expected)
+          << "y " << y << ", face " << t;
+      EXPECT_TRUE(meeting.empty());
+      ShadowPlane plane;
+      EXPECT_EQ(occ.classify(P, down, tris[t], out, all_indices(occ), plane), expected);
+      EXPECT_EQ(plane.seen, y > 0.6);
+      EXPECT_TRUE(plane.shadows.empty());
+    }
+  }
+}
+
 TEST(Occluders, TheWallIsSeenFullyFromTheFloorItStandsOn) {
   const std::vector<Tri> tris = floor_and_wall();
   const Occluders occ(mesh_of(tris));

@@ -19,7 +19,10 @@
 // coordinates at |x|, matters only for a scene far from the origin relative to its size: a point
 // on a face must never come out behind it) and kShadowMargin * area(tau) on shadow areas:
 // a face that enters the shaft by less than the margin is ignored, and a visible area below the
-// margin is empty. In detail: a corner of tau within the margin of P's plane counts as on it; a
+// margin is empty. In detail: P within the margin of tau's plane sees tau when it is strictly in
+// front of it by the exact orientation, and then no face is tested against that shaft (thinner
+// than the margin: a face crossing it could hide at most tau's factor, below
+// margin / (2 dist(P, tau))); a corner of tau within the margin of P's plane counts as on it; a
 // face whose corners all lie within the margin outside one of the shaft's planes, or whose plane
 // passes within the margin of P, casts no shadow; a shadow of area at most the area margin is none;
 // in the subtraction of the shadows a corner within the margin of a shadow's edge line counts as on
