@@ -23,7 +23,8 @@ void emit(const Vec2* p, int n, double min_area, Pieces& out) {
 
 }  // namespace
 
-void subtract_convex(const Pieces& in, const Vec2* poly, int n_poly, double tol, double min_area, Pieces& out) {
+void subtract_convex(const Pieces& in, const Vec2* poly, int n_poly, double tol, double min_area, Pieces& out,
+                     Pieces* covered) {
   Vec2 slo = poly[0], shi = poly[0];
   for (int j = 1; j < n_poly; ++j) {
     slo = slo.cwiseMin(poly[j]);
@@ -41,24 +42,24 @@ void subtract_convex(const Pieces& in, const Vec2* poly, int n_poly, double tol,
     line_at[n_lines] = a;
     line_in[n_lines++] = Vec2(-d.y() / len, d.x() / len);
   }
-  subtract_convex(in, line_at.data(), line_in.data(), n_lines, slo, shi, tol, min_area, out);
+  subtract_convex(in, line_at.data(), line_in.data(), n_lines, slo, shi, tol, min_area, out, covered);
 }
 
 void subtract_convex(const Pieces& in, const Vec2* line_at, const Vec2* line_in, int n_lines, const Vec2& slo,
-                     const Vec2& shi, double tol, double min_area, Pieces& out) {
+                     const Vec2& shi, double tol, double min_area, Pieces& out, Pieces* covered) {
   out.clear();
   std::uint32_t begin = 0;
   for (std::size_t k = 0; k < in.end.size(); ++k) {
     const std::uint32_t end = in.end[k];
     subtract_convex_from_piece(in.pts.data() + begin, static_cast<int>(end - begin), in.area[k], line_at, line_in,
-                               n_lines, slo, shi, tol, min_area, out);
+                               n_lines, slo, shi, tol, min_area, out, covered);
     begin = end;
   }
 }
 
 void subtract_convex_from_piece(const Vec2* piece, int np, double piece_area, const Vec2* line_at,
                                 const Vec2* line_in, int n_lines, const Vec2& slo, const Vec2& shi, double tol,
-                                double min_area, Pieces& out) {
+                                double min_area, Pieces& out, Pieces* covered) {
   thread_local std::vector<Vec2> cur, inner, outer;
   thread_local std::vector<double> dist;
   Vec2 lo = piece[0], hi = piece[0];
@@ -89,7 +90,7 @@ void subtract_convex_from_piece(const Vec2* piece, int np, double piece_area, co
     }
     if (dmax <= tol) {  // outside this edge's line: the shadow misses what is left
       emit(cur.data(), n, min_area, out);
-      break;
+      return;
     }
     if (dmin >= -tol) continue;  // inside this edge's line: on to the next edge
     // Split along the line; corners within tol of it belong to both sides (no slivers).
@@ -110,9 +111,11 @@ void subtract_convex_from_piece(const Vec2* piece, int np, double piece_area, co
     }
     emit(outer.data(), static_cast<int>(outer.size()), min_area, out);
     cur.swap(inner);
-    if (cur.size() < 3) break;
+    if (cur.size() < 3) return;
   }
-  // What is inside every edge line is covered by the shadow: dropped.
+  // What is inside every edge line is covered by the shadow: dropped from the pieces, kept as
+  // covered when asked for (whatever its area: the covered part is the complement of the pieces).
+  if (covered) emit(cur.data(), static_cast<int>(cur.size()), 0, *covered);
 }
 
 }  // namespace panelrad::geometry::occluder_detail

@@ -35,6 +35,18 @@ using Tree = CGAL::AABB_tree<AabbTraits>;
 
 K::Point_3 point(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
+}  // namespace
+
+namespace occluder_detail {
+
+bool strictly_in_front(const Vec3& P, const std::array<Vec3, 3>& t) {
+  return CGAL::orientation(point(t[0]), point(t[1]), point(t[2]), point(P)) == CGAL::POSITIVE;
+}
+
+}  // namespace occluder_detail
+
+namespace {
+
 /// The segment PQ meets the box widened by m (slab test). The widening covers the rounding of the
 /// slab parameters (relative 1e-16), so that no face the segment crosses is missed.
 bool segment_meets_box(const Vec3& P, const Vec3& Q, const CGAL::Bbox_3& b, double m) {
@@ -150,20 +162,24 @@ struct Occluders::Impl {
     }
   }
 
-  /// tau's front part minus the shadows, into `pieces`; returns its area.
-  double visible_pieces(const Shaft& s, const std::vector<Shadow>& shadows, Pieces& pieces) const {
+  /// tau's front part minus the shadows, into `pieces` (the parts inside the shadows appended to
+  /// `covered` when given); returns its area.
+  double visible_pieces(const Shaft& s, const std::vector<Shadow>& shadows, Pieces& pieces,
+                        Pieces* covered = nullptr) const {
     front_part_of_tau(s, pieces);
-    return subtract_all(shadows, 1e-3 * s.area_margin, pieces);
+    return subtract_all(shadows, 1e-3 * s.area_margin, pieces, covered);
   }
 
   /// pieces minus the convex polygons (each with corners p[0, n)), pieces of area at most min_area
-  /// dropped; returns the area of what is left.
+  /// dropped, the parts inside them appended to `covered` when given; returns the area of what is
+  /// left.
   template <class Polygons>
-  double subtract_all(const Polygons& polygons, double min_area, Pieces& pieces) const {
+  double subtract_all(const Polygons& polygons, double min_area, Pieces& pieces, Pieces* covered = nullptr) const {
     thread_local Pieces other;
+    if (covered) covered->clear();
     for (const auto& sh : polygons) {
       if (pieces.end.empty()) break;
-      subtract_convex(pieces, sh.p.data(), sh.n, margin, min_area, other);
+      subtract_convex(pieces, sh.p.data(), sh.n, margin, min_area, other, covered);
       pieces.swap(other);
     }
     double area = 0;
@@ -171,8 +187,10 @@ struct Occluders::Impl {
     return area;
   }
 
-  static void write(const Shaft& s, const Pieces& pieces, double area, VisiblePart& out) {
+  static void write(const Shaft& s, const Pieces& pieces, double area, const Pieces& covered, VisiblePart& out) {
     write(s.t[0], s.u, s.w, pieces, area, out);
+    out.whole_front = !s.straddles;
+    write_covered(s.t[0], s.u, s.w, covered, out);
   }
 
   static void write(const Vec3& origin, const Vec3& u, const Vec3& w, const Pieces& pieces, double area,
@@ -184,11 +202,20 @@ struct Occluders::Impl {
     out.area = area;
   }
 
+  static void write_covered(const Vec3& origin, const Vec3& u, const Vec3& w, const Pieces& covered,
+                            VisiblePart& out) {
+    out.covered_points.clear();
+    out.covered_points.reserve(covered.pts.size());
+    for (const Vec2& p : covered.pts) out.covered_points.push_back(origin + p.x() * u + p.y() * w);
+    out.covered_end.assign(covered.end.begin(), covered.end.end());
+  }
+
   static void write_whole(const Shaft& s, VisiblePart& out) {
     out.clear();
     out.points.assign(s.t.begin(), s.t.end());
     out.piece_end.push_back(3);
     out.area = s.area;
+    out.whole_front = true;
   }
 };
 
@@ -264,8 +291,8 @@ double Occluders::diameter() const { return impl_->diameter; }
 void Occluders::candidates(const Vec3& P, const Vec3& nP, const std::array<Vec3, 3>& tau, const Vec3& nQ,
                            std::vector<Index>& out) const {
   Shaft s;
-  if (!make_shaft(P, nP, tau, nQ, impl_->margin, s)) {
-    out.clear();  // nothing of tau is seen: no face meets the (empty) shaft
+  if (!make_shaft(P, nP, tau, nQ, impl_->margin, s) || s.grazing) {
+    out.clear();  // nothing of tau is seen: no face meets the (empty) shaft; or none is tested
     return;
   }
   complete_shaft(s);
@@ -279,6 +306,7 @@ ShaftClass Occluders::classify(const Vec3& P, const Vec3& nP, const std::array<V
   if (part) part->clear();
   Shaft s;
   if (!make_shaft(P, nP, tau, nQ, impl_->margin, s)) return ShaftClass::hidden;
+  if (s.grazing) among = {};
   if (among.empty() && !s.straddles) return ShaftClass::full;  // the four plane tests decide
   complete_shaft(s);
   thread_local std::vector<Shadow> shadows;
@@ -286,10 +314,10 @@ ShaftClass Occluders::classify(const Vec3& P, const Vec3& nP, const std::array<V
   impl_->shadows_of(s, among, meeting, shadows);
   if (!std::is_sorted(meeting.begin(), meeting.end())) std::sort(meeting.begin(), meeting.end());
   if (shadows.empty() && !s.straddles) return ShaftClass::full;
-  thread_local Pieces pieces;
-  const double area = impl_->visible_pieces(s, shadows, pieces);
+  thread_local Pieces pieces, covered;
+  const double area = impl_->visible_pieces(s, shadows, pieces, part ? &covered : nullptr);
   if (!(area > s.area_margin)) return ShaftClass::hidden;
-  if (part) Impl::write(s, pieces, area, *part);
+  if (part) Impl::write(s, pieces, area, covered, *part);
   return ShaftClass::partial;
 }
 
@@ -310,6 +338,7 @@ ShaftClass Occluders::classify(const Vec3& P, const Vec3& nP, const std::array<V
   plane.nQ = s.nQ;
   plane.height = s.height;
   plane.seen = true;
+  if (s.grazing) among = {};
   if (among.empty() && !s.straddles) return ShaftClass::full;  // the four plane tests decide
   impl_->shadows_of(s, among, plane.faces, plane.shadows);
   for (PlaneShadow& sh : plane.shadows) {
@@ -328,10 +357,10 @@ ShaftClass Occluders::classify(const Vec3& P, const Vec3& nP, const std::array<V
     }
   }
   if (plane.shadows.empty() && !s.straddles) return ShaftClass::full;
-  thread_local Pieces pieces;
-  const double area = impl_->visible_pieces(s, plane.shadows, pieces);
+  thread_local Pieces pieces, covered;
+  const double area = impl_->visible_pieces(s, plane.shadows, pieces, part ? &covered : nullptr);
   if (!(area > s.area_margin)) return ShaftClass::hidden;
-  if (part) Impl::write(s, pieces, area, *part);
+  if (part) Impl::write(s, pieces, area, covered, *part);
   return ShaftClass::partial;
 }
 
@@ -343,7 +372,8 @@ ShaftClass Occluders::classify_within(const ShadowPlane& plane, const std::array
   if (!plane.seen) return ShaftClass::hidden;
   const double m = impl_->margin;
   // sub in T's frame, counter-clockwise about nQ, and its corners' distances from P's plane. P's
-  // height over sub's plane is T's (plane.height > margin, as make_shaft checked).
+  // height over sub's plane is T's (plane.height > margin, or P strictly in front within the
+  // margin, as make_shaft checked; then T has no shadows).
   std::array<Vec2, 3> c;
   std::array<double, 3> tP;
   for (int i = 0; i < 3; ++i) {
@@ -491,9 +521,12 @@ ShaftClass Occluders::classify_within(const ShadowPlane& plane, const std::array
     meeting.clear();
     return ShaftClass::hidden;
   }
+  thread_local Pieces covered;
+  covered.clear();
   for (const PlaneShadow* sh : shadows) {
     if (pieces.end.empty()) break;
-    subtract_convex(pieces, sh->line_at.data(), sh->line_in.data(), sh->lines, sh->lo, sh->hi, m, min_area, other);
+    subtract_convex(pieces, sh->line_at.data(), sh->line_in.data(), sh->lines, sh->lo, sh->hi, m, min_area, other,
+                    &covered);
     pieces.swap(other);
   }
   double area = 0;
@@ -502,7 +535,9 @@ ShaftClass Occluders::classify_within(const ShadowPlane& plane, const std::array
     meeting.clear();
     return ShaftClass::hidden;
   }
-  if (part) Impl::write(plane.origin, plane.u, plane.w, pieces, area, *part);
+  Impl::write(plane.origin, plane.u, plane.w, pieces, area, *part);
+  part->whole_front = !straddles;
+  Impl::write_covered(plane.origin, plane.u, plane.w, covered, *part);
   return ShaftClass::partial;
 }
 
@@ -511,6 +546,7 @@ void Occluders::visible_part(const Vec3& P, const Vec3& nP, const std::array<Vec
   out.clear();
   Shaft s;
   if (!make_shaft(P, nP, tau, nQ, impl_->margin, s)) return;
+  if (s.grazing) among = {};
   complete_shaft(s);
   thread_local std::vector<Index> meeting;
   thread_local std::vector<Shadow> shadows;
@@ -521,10 +557,10 @@ void Occluders::visible_part(const Vec3& P, const Vec3& nP, const std::array<Vec
     Impl::write_whole(s, out);
     return;
   }
-  thread_local Pieces pieces;
-  const double area = impl_->visible_pieces(s, shadows, pieces);
+  thread_local Pieces pieces, covered;
+  const double area = impl_->visible_pieces(s, shadows, pieces, &covered);
   if (!(area > s.area_margin)) return;
-  Impl::write(s, pieces, area, out);
+  Impl::write(s, pieces, area, covered, out);
 }
 
 bool Occluders::visible(const Vec3& P, const Vec3& Q) const {

@@ -34,7 +34,10 @@ struct Shaft {
   std::array<Vec3, 3> t;           ///< tau's corners, counter-clockwise about nQ
   Vec3 nQ;                         ///< unit geometric normal of tau, on the side of the given nQ
   std::array<Vec3, 3> side_n;      ///< unit inward normals of the planes through P and (t[i], t[i+1])
-  double height = 0;               ///< distance of P from tau's plane (> margin)
+  double height = 0;               ///< distance of P from tau's plane (> margin unless grazing)
+  /// P within the margin of tau's plane but strictly in front of it (exact orientation): the shaft
+  /// is thinner than the margin, no face is tested against it (see make_shaft).
+  bool grazing = false;
   std::array<double, 3> tP{};      ///< signed distances of tau's corners from P's plane
   bool straddles = false;          ///< tau crosses P's plane: its part behind is cut away
   Vec3 lo, hi;                     ///< bounding box of P and tau
@@ -44,8 +47,13 @@ struct Shaft {
   Vec3 u, w;                       ///< orthonormal frame of tau's plane at t[0], (u, w, nQ) right-handed
 };
 
-/// Sets up tau's and P's planes of the shaft; false when nothing of tau is seen whatever the occluders (P on or behind
-/// tau's plane, tau on or behind P's plane, both by the margin).
+/// P strictly in front of the plane of tau = (t0, t1, t2), counter-clockwise about its front
+/// normal: the exact sign of the orientation determinant (occluders.cpp, CGAL's filtered predicate).
+bool strictly_in_front(const Vec3& P, const std::array<Vec3, 3>& t);
+
+/// Sets up tau's and P's planes of the shaft; false when nothing of tau is seen whatever the
+/// occluders (P on or behind tau's plane, tau on or behind P's plane, both by the margin, except
+/// that P within the margin but strictly in front of tau's plane sees it: s.grazing).
 bool make_shaft(const Vec3& P, const Vec3& nP, const std::array<Vec3, 3>& tau, const Vec3& nQ, double margin,
                 Shaft& s);
 
@@ -100,19 +108,20 @@ int clip_to_half_plane(const Vec2* in, int n, const Vec2& o, const Vec2& m, doub
 /// shadow's edge lines: the part of a piece outside an edge's line is a piece of the difference,
 /// the part inside goes on to the next edge, and what is inside every edge is covered. Corners
 /// within `tol` of a line count as on it (no sliver pieces); pieces of area at most `min_area` are
-/// dropped.
-void subtract_convex(const Pieces& in, const Vec2* poly, int n, double tol, double min_area, Pieces& out);
+/// dropped. `covered` given: the parts inside every edge line (of positive area) are appended to it.
+void subtract_convex(const Pieces& in, const Vec2* poly, int n, double tol, double min_area, Pieces& out,
+                     Pieces* covered = nullptr);
 
 /// The same with the shadow given by its edge lines longer than tol (a point line_at[j] and the
 /// unit normal line_in[j] towards the inside, in counter-clockwise order) and its box [slo, shi].
 void subtract_convex(const Pieces& in, const Vec2* line_at, const Vec2* line_in, int n_lines, const Vec2& slo,
-                     const Vec2& shi, double tol, double min_area, Pieces& out);
+                     const Vec2& shi, double tol, double min_area, Pieces& out, Pieces* covered = nullptr);
 
 /// One piece (corners piece[0, np), area piece_area) minus the shadow given by its edge lines, the
 /// pieces of the difference appended to out (subtract_convex does this for each piece of `in`).
 void subtract_convex_from_piece(const Vec2* piece, int np, double piece_area, const Vec2* line_at,
                                 const Vec2* line_in, int n_lines, const Vec2& slo, const Vec2& shi, double tol,
-                                double min_area, Pieces& out);
+                                double min_area, Pieces& out, Pieces* covered = nullptr);
 
 double polygon_area(const Vec2* p, int n);
 

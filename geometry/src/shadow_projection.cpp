@@ -44,7 +44,17 @@ bool make_shaft(const Vec3& P, const Vec3& nP, const std::array<Vec3, 3>& tau, c
   s.area = twice_area / 2;
   s.area_margin = kShadowMargin * s.area;
   s.height = (P - s.t[0]).dot(s.nQ);
-  if (!(s.height > margin)) return false;  // P on or behind tau's plane: cos theta_Q <= 0
+  s.grazing = false;
+  if (!(s.height > margin)) {
+    // P on or behind tau's plane: cos theta_Q <= 0. Within the margin the sign is taken exactly:
+    // a point a narrow gap h from a face, rounded to within d < margin in front of the plane of a
+    // face across the gap (a collocation point above a box's edge, the box's side), sees it with
+    // the factor d / 2h, which the face above the gap misses. Such a shaft is thinner than the
+    // margin; no face is tested against it (a face crossing it could hide at most the factor of
+    // tau, below margin / (2 dist(P, tau))).
+    if (!(s.height > -margin) || !strictly_in_front(P, s.t)) return false;
+    s.grazing = true;
+  }
   double lo = 0, hi = 0;
   for (int i = 0; i < 3; ++i) {
     s.tP[i] = (s.t[i] - P).dot(s.nP);

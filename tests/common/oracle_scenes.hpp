@@ -166,18 +166,6 @@ struct BoxScene {
     }
     return m;
   }
-  /// The positive gaps placed in `frame` (frame units): the distance a coordinate's gaps move it
-  /// from its base.
-  std::vector<double> placed_gaps(const Frame& frame) const {
-    std::vector<double> gaps;
-    for (const OracleBox& b : boxes)
-      for (int k = 0; k < 3; ++k)
-        for (const Coord* c : {&b.lo[k], &b.hi[k]}) {
-          const double g = std::abs(place(frame, k, *c) - frame.place(k, c->base));
-          if (g > 0) gaps.push_back(g);
-        }
-    return gaps;
-  }
   std::string describe() const {
     std::string s = name + ":";
     for (std::size_t i = 0; i < boxes.size(); ++i) s += (i ? "; " : " ") + boxes[i].describe();
@@ -232,6 +220,18 @@ inline BoxScene box_above_floor(double gap) {
 inline BoxScene box_below_ceiling(double gap) {
   return {"room with a box below the ceiling, " + gap_name(gap),
           {unit_room(), axis_box_of({0.35, 0.3, 0.6}, {0.65, 0.6, Coord(1.0).plus(-gap)}, BoxFront::outside)}};
+}
+
+/// The room with two boxes below its ceiling, [0.35, 0.65] x [0.3, 0.6] x [0.6, 1 - gap] and, near
+/// its corner, [0.7, 0.8] x [0.65, 0.75] x [0.7, 1 - gap / 4]: the second reaches higher, so from a
+/// point on the first's top its sides rise gap * 3/4 into the gap, and their vertical edges cast
+/// shadow edges on the ceiling whose lines pass through the point's foot (the central projection
+/// maps a line along the ceiling's normal to a line through the foot), within the ceiling's
+/// elements that hold the foot at level 1.
+inline BoxScene boxes_below_ceiling(double gap) {
+  return {"room with two boxes below the ceiling, " + gap_name(gap) + " and a quarter of it",
+          {unit_room(), axis_box_of({0.35, 0.3, 0.6}, {0.65, 0.6, Coord(1.0).plus(-gap)}, BoxFront::outside),
+           axis_box_of({0.7, 0.65, 0.7}, {0.8, 0.75, Coord(1.0).plus(-gap / 4)}, BoxFront::outside)}};
 }
 
 /// The room with the box [gap, 0.3] x [0.3, 0.65] x [0.25, 0.6] beside its wall x = 0 (gap 0:
@@ -482,14 +482,10 @@ inline double coordinate_resolution(const TriangleMesh& mesh) {
 
 /// The bound of the closed oracle, max_i |u_i - c| / c < 1e-9 + 10 delta / (1 - rho_max) with
 /// rho_max = 0.7 and delta the coordinate resolution (test_occluded_oracle.cpp derives it): 1e-9
-/// near the origin at any scale, 4.4e-7 for the unit room 1e8 away. With faces facing each other
-/// across a gap h that the visibility resolves (above four times its margin, visibility_margin of
-/// occluders.hpp; narrower gaps are taken as contact), 256 eps M / h more (M the largest
-/// coordinate): the shadow tests place shadow edges from heights above planes that carry an
-/// absolute error of a few eps M, relative eps M / h across the gap (test_occluded_oracle.cpp).
-inline double oracle_tolerance(double resolution, double gap_term = 0) {
-  return 1e-9 + 10 * resolution / (1 - 0.7) + gap_term;
-}
+/// near the origin at any scale, 4.4e-7 for the unit room 1e8 away. Faces facing each other across
+/// a narrow gap add nothing: the form factors are accurate to a few eps however close P is to a
+/// plane (quadrature/exact_integrals.hpp, form_factor).
+inline double oracle_tolerance(double resolution) { return 1e-9 + 10 * resolution / (1 - 0.7); }
 
 /// What one closed-scene oracle run found.
 struct OracleRun {
@@ -528,22 +524,12 @@ inline SolveOptions oracle_solver_options(int level) {
 
 /// Validates `mesh` and solves it with rho(f) per facet and E = c (1 - rho): the closed-scene
 /// oracle, u = c. `level` < 0: level 1, or 0 when level 1 would have more than max_elements.
-/// `gaps`: the gaps between faces facing each other (frame units).
 inline OracleRun run_constant_oracle(TriangleMesh mesh, double c, int level,
                                      const std::function<double(Index)>& rho = oracle_rho,
-                                     Index max_elements = 1024, const std::vector<double>& gaps = {}) {
+                                     Index max_elements = 1024) {
   OracleRun run;
   run.resolution = coordinate_resolution(mesh);
-  double gap_term = 0, smallest_gap = 0;
-  const double resolved = 4 * geometry::visibility_margin(mesh);  // narrower: contact
-  for (double g : gaps)
-    if (g > resolved && (smallest_gap == 0 || g < smallest_gap)) smallest_gap = g;
-  if (smallest_gap > 0) {
-    double largest = 0;
-    for (const Vec3& v : mesh.vertices) largest = std::max(largest, v.cwiseAbs().maxCoeff());
-    gap_term = 256 * std::numeric_limits<double>::epsilon() * largest / smallest_gap;
-  }
-  run.tolerance = oracle_tolerance(run.resolution, gap_term);
+  run.tolerance = oracle_tolerance(run.resolution);
   geometry::SceneValidationReport report;
   std::optional<geometry::ValidatedMesh> validated = geometry::try_validate(std::move(mesh), report);
   run.valid = report.valid;

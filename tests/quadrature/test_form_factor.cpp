@@ -3,11 +3,14 @@
 #include <panelrad/quadrature/singular_integration.hpp>
 #include <panelrad/quadrature/triangle_rules.hpp>
 
+#include "configuration_factors.hpp"
+
 #include <gtest/gtest.h>
 
 #include <array>
 #include <utility>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 using namespace panelrad::quadrature;
@@ -128,6 +131,45 @@ TEST(FormFactor, TinyHeightFarFromTriangleKeepsRelativeAccuracy) {
     const double leading = h * h * inv_r4 / kPi;
     EXPECT_NEAR(ff, leading, 1e-13 * leading + 10 * h * h * leading) << h;  // O(h^2) correction
     EXPECT_GT(ff, 0);
+  }
+}
+
+// A point a narrow gap h below a plane, its foot within a rounding (1e-16) of the edges of the
+// elements there: the square [0, 1]^2 at z = 1 split into the 8 triangles of the midpoint
+// subdivision of its two halves (edges on the diagonal x = y and the lines x = 1/2, y = 1/2). The
+// contour terms of an edge under the foot are e gamma / D with D ~ h, so an error of a few eps in
+// the foot's distance e from the edge (rounded dot products with vectors of length ~1) would be a
+// relative error eps / h in the factor (1e-7 at h = 1e-9), and the two triangles sharing the edge
+// would not cancel it. The sum must equal the closed-form factor of the square
+// (configuration_factors.hpp): 8 factors and 4 corner terms, each accurate to a few eps: 64 eps.
+TEST(FormFactor, NarrowGapBelowEdgesSumsToTheSquare) {
+  const double mid = 0.5;
+  std::vector<std::array<Vec3, 3>> tris;
+  for (const std::array<Vec3, 3>& half : {std::array<Vec3, 3>{Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(1, 1, 1)},
+                                          std::array<Vec3, 3>{Vec3(0, 0, 1), Vec3(1, 1, 1), Vec3(0, 1, 1)}}) {
+    const Vec3 m01 = mid * (half[0] + half[1]), m12 = mid * (half[1] + half[2]), m20 = mid * (half[2] + half[0]);
+    tris.push_back({half[0], m01, m20});
+    tris.push_back({m01, half[1], m12});
+    tris.push_back({m20, m12, half[2]});
+    tris.push_back({m01, m12, m20});
+  }
+  const Vec3 nP(0, 0, 1), nQ(0, 0, -1);
+  const panelrad::testing::AxisRectangle square{0, 1, 0, 1};
+  const std::vector<std::array<double, 2>> feet = {{0.55000000000000004, 0.54999999999999993},
+                                                   {0.3, std::nextafter(0.3, 1.0)},
+                                                   {0.5, 0.3},
+                                                   {std::nextafter(0.5, 0.0), 0.8},
+                                                   {0.7, std::nextafter(0.5, 1.0)},
+                                                   {0.8, 0.8}};
+  for (const double h : {1e-3, 1e-6, 1e-9, 1e-11}) {
+    for (const auto& foot : feet) {
+      const Vec3 P(foot[0], foot[1], 1 - h);
+      double sum = 0;
+      for (const auto& t : tris) sum += form_factor(P, nP, t[0], t[1], t[2], nQ);
+      const double truth = panelrad::testing::parallel_rectangle_factor(foot[0], foot[1], square, 1 - P.z());
+      EXPECT_NEAR(sum, truth, 64 * std::numeric_limits<double>::epsilon())
+          << "h " << h << ", foot (" << foot[0] << ", " << foot[1] << ")";
+    }
   }
 }
 

@@ -41,8 +41,7 @@ TEST(OccludedOracleRandom, ClosedScenesSolveToTheConstant) {
     if (s.frame.offset.norm() > 0) ++far;
     if (s.frame.scale != 1) ++scaled;
     const testing::OracleRun run =
-        testing::run_constant_oracle(s.boxes.mesh(s.frame), s.c, s.level, [&](Index f) { return s.rho_of(f); },
-                                     1024, s.boxes.placed_gaps(s.frame));
+        testing::run_constant_oracle(s.boxes.mesh(s.frame), s.c, s.level, [&](Index f) { return s.rho_of(f); });
     if (!run.valid) {
       ++refused;
       ADD_FAILURE() << s.describe() << "\n  valid by construction, " << run.describe();

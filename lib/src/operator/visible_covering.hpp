@@ -19,6 +19,7 @@
 #include <panelrad/geometry/occluders.hpp>
 #include <panelrad/operator/near_field.hpp>
 
+#include <array>
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -42,9 +43,18 @@ struct VisibilityCounts {
   }
 };
 
-/// (1/pi) Int over the visible pieces of G(P, Q) dS_Q: the closed-form form factor of each convex
-/// piece (fan triangles), with nQ the pieces' front normal.
-double visible_form_factor(const Vec3& P, const Vec3& nP, const geometry::VisiblePart& part, const Vec3& nQ);
+/// (1/pi) Int over the visible part of tau of G(P, Q) dS_Q, nQ tau's front normal: the sum of the
+/// closed-form form factors of the convex pieces (fan triangles). The pieces' corners are rounded
+/// (a few eps of the coordinates), and where pieces meet, a corner of one on an edge of another
+/// is off it by that much: a sliver of width ~eps M left out or counted twice, harmless unless it
+/// passes within the height h of P over tau's plane of P's foot, where it weighs eps M / h (a point
+/// a narrow gap below a plane, an edge line of a distant shadow extended under it). So when an
+/// edge of the pieces passes that close to P (the segment within R / kNearEdgeRatio of P, R the
+/// distance of its ends, as in quadrature::form_factor) and tau lies wholly in front of P's plane, the factor is
+/// taken as the complement, the factor of tau (its own corners) minus those of the covered pieces,
+/// whose edges lie inside the shadows, unless those pass as close (P's foot at a shadow's edge).
+double visible_form_factor(const Vec3& P, const Vec3& nP, const geometry::VisiblePart& part,
+                           const std::array<Vec3, 3>& tau, const Vec3& nQ);
 
 /// Reusable buffers of one thread's walks.
 struct VisibleCoveringScratch {
@@ -117,7 +127,7 @@ void cover_visible(const geometry::ClusterTree& tree, const geometry::Occluders&
     // Partly visible.
     if (it.level == L) {
       ++counts.clipped;
-      near(it.k, visible_form_factor(P, nP, s.part, c.normal));
+      near(it.k, visible_form_factor(P, nP, s.part, c.vertex, c.normal));
       continue;
     }
     const std::size_t begin = s.pool.size();

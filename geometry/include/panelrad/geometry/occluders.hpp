@@ -19,7 +19,10 @@
 // coordinates at |x|, matters only for a scene far from the origin relative to its size: a point
 // on a face must never come out behind it) and kShadowMargin * area(tau) on shadow areas:
 // a face that enters the shaft by less than the margin is ignored, and a visible area below the
-// margin is empty. In detail: a corner of tau within the margin of P's plane counts as on it; a
+// margin is empty. In detail: P within the margin of tau's plane sees tau when it is strictly in
+// front of it by the exact orientation, and then no face is tested against that shaft (thinner
+// than the margin: a face crossing it could hide at most tau's factor, below
+// margin / (2 dist(P, tau))); a corner of tau within the margin of P's plane counts as on it; a
 // face whose corners all lie within the margin outside one of the shaft's planes, or whose plane
 // passes within the margin of P, casts no shadow; a shadow of area at most the area margin is none;
 // in the subtraction of the shadows a corner within the margin of a shadow's edge line counts as on
@@ -62,11 +65,23 @@ struct VisiblePart {
   std::vector<Vec3> points;              ///< the pieces' corners, piece after piece, counter-clockwise about nQ
   std::vector<std::uint32_t> piece_end;  ///< piece k is points[piece_end[k-1], piece_end[k]) (piece_end[-1] = 0)
   double area = 0;                       ///< total area of the pieces
+  /// tau lies wholly in front of P's plane (nothing of it is cut away there): the pieces and the
+  /// covered pieces below then make up tau.
+  bool whole_front = false;
+  /// The covered part: the parts of tau's front part inside the shadows, convex pieces as above,
+  /// each inside one shadow. With the pieces it makes up the front part, up to slivers within the
+  /// margins of the rounding policy: an integral over the visible part is also the integral over
+  /// tau minus that over the covered part, whose pieces' edges lie inside the shadows.
+  std::vector<Vec3> covered_points;
+  std::vector<std::uint32_t> covered_end;
   std::size_t num_pieces() const { return piece_end.size(); }
   void clear() {
     points.clear();
     piece_end.clear();
     area = 0;
+    whole_front = false;
+    covered_points.clear();
+    covered_end.clear();
   }
 };
 

@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>  // cross products
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <vector>
@@ -55,7 +56,29 @@ inline double form_factor(const Vec3& P, const Vec3& nP, const Vec3& a, const Ve
 //   sum_k sgn(e_k) [ (|e_k|/D_k - 1) gamma_k + (gamma_k(D_k) - gamma_k(|e_k|)) ]
 // (the in-plane winding sum sgn(e_k) gamma_k(|e_k|) is exactly 0 outside), each bracket
 // evaluated from differences formed analytically (D - |e| = h^2/(D + |e|)).
+// Rounding. h and e_k computed as dot products with P - a and V_k - P carry absolute errors of a
+// few eps R (R the distance from P to the corners); the terms [h (nP.n_k) + nu e_k] gamma_k / D_k
+// then carry a few eps R / D_k. Where P lies close to an edge's line relative to R (a point a
+// narrow gap h away from a plane, its foot near an edge of an element there), that is a relative
+// error eps R / h in the factor, and the two elements sharing the edge do not cancel it (each rounds
+// its own e_k). So when some D_k < R / kNearEdgeRatio, h and the e_k are recomputed from the
+// corners and P themselves, exactly in their differences and in double-double arithmetic:
+//   h = N.(P - a) / |N|,  e_k = N.((V_k - P) x (V_k+1 - P)) / (L_k |N|),  N = (b - a) x (c - a)
+// (accurate_heights), which leaves each term accurate to a few eps; elsewhere the double path is
+// kept (its error is then at most a few eps kNearEdgeRatio in each term).
+/// P within R / kNearEdgeRatio of an edge's line (R its distance from the edge's corners): h and
+/// the e_k are recomputed by accurate_heights.
+inline constexpr double kNearEdgeRatio = 64;
+
 namespace detail {
+
+/// The height h of P over the plane of the triangle (V0, V1, V2) (counter-clockwise about its
+/// front normal, h > 0 in front) and the signed distances e[k] of P's foot inside the edge lines
+/// (V_k, V_k+1), L[k] the edges' lengths: differences of the coordinates exact, products and sums
+/// in double-double, absolute errors about 2^-100 R in h and 2^-100 R^2 / L_k in e_k (R the
+/// distance from P to the corners).
+void accurate_heights(const Vec3& P, const Vec3& V0, const Vec3& V1, const Vec3& V2, const double L[3], double& h,
+                      double e[3]);
 
 /// gamma / D with gamma = atan2(D L, den): the angle subtended by an edge of length L seen from a
 /// point at distance D of its line, den = R_k . R_k+1. Series in t = D L / den when t is tiny
@@ -73,26 +96,38 @@ inline double angle_over_distance(double D, double L, double den) {
 
 inline double form_factor(const Vec3& P, const Vec3& nP, const Vec3& a, const Vec3& b,
                           const Vec3& c, const Vec3& nQ) {
-  const double h = (P - a).dot(nQ);  // (P - Q).nQ for every Q of the plane
-  if (h == 0) return 0;              // paper 4.2, case (a): coplanar, exactly zero
+  double h = (P - a).dot(nQ);  // (P - Q).nQ for every Q of the plane
+  if (h == 0) return 0;        // paper 4.2, case (a): coplanar, exactly zero
   const bool flip = (b - a).cross(c - a).dot(nQ) < 0;  // walk the edges counter-clockwise about nQ
   const Vec3* V[4] = {&a, flip ? &c : &b, flip ? &b : &c, &a};
-  const double nu = nP.dot(nQ), h2 = h * h;
-  double sum_t = 0, sum_n = 0, mag_n = 0;
-  bool outside = false;
-  double e[3], D[3], g[3], s1[3], s2[3];
+  const double nu = nP.dot(nQ);
+  double e[3], D[3], L[3], nPnk[3], s1[3], s2[3];
+  bool near_edge = false;
   for (int k = 0; k < 3; ++k) {
     const Vec3 E = *V[k + 1] - *V[k];
-    const double L = E.norm();
-    const Vec3 tau = E / L;
+    L[k] = E.norm();
+    const Vec3 tau = E / L[k];
     const Vec3 nk = tau.cross(nQ);  // outward in-plane normal of edge k
     const Vec3 w0 = *V[k] - P, w1 = *V[k + 1] - P;
     e[k] = w0.dot(nk);
     s1[k] = w0.dot(tau);
     s2[k] = w1.dot(tau);
-    D[k] = std::sqrt(e[k] * e[k] + h2);
-    g[k] = detail::angle_over_distance(D[k], L, D[k] * D[k] + s1[k] * s2[k]);
-    sum_t += nP.dot(nk) * g[k];
+    nPnk[k] = nP.dot(nk);
+    D[k] = std::sqrt(e[k] * e[k] + h * h);
+    near_edge |= D[k] * kNearEdgeRatio < std::max(w0.cwiseAbs().maxCoeff(), w1.cwiseAbs().maxCoeff());
+  }
+  if (near_edge) {
+    detail::accurate_heights(P, *V[0], *V[1], *V[2], L, h, e);
+    if (h == 0) return 0;  // P in the plane after all
+    for (int k = 0; k < 3; ++k) D[k] = std::sqrt(e[k] * e[k] + h * h);
+  }
+  const double h2 = h * h;
+  double sum_t = 0, sum_n = 0, mag_n = 0;
+  bool outside = false;
+  double g[3];
+  for (int k = 0; k < 3; ++k) {
+    g[k] = detail::angle_over_distance(D[k], L[k], D[k] * D[k] + s1[k] * s2[k]);
+    sum_t += nPnk[k] * g[k];
     const double term = e[k] * g[k];
     sum_n += term;
     mag_n += std::abs(term);
