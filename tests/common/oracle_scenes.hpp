@@ -310,6 +310,37 @@ inline TriangleMesh t_junction_room_with_box(const Frame& frame, Winding winding
   return m;
 }
 
+/// A room [0, 1]^3 whose wall x = 1 has a square window [0.3, 0.7]^2 (in y, z), closed by a second
+/// room [1, 1.5] x [0.3, 0.7]^2 open towards it: one closed enclosure, not convex. The wall around
+/// the window is four rectangles whose corners lie inside each other's edges (T-junctions); the
+/// second room's walls meet the first's wall along the window's outline. A box stands in the
+/// first room. `winding`: natural (front sides inward) or reversed.
+inline TriangleMesh room_with_window_closed_by_second_room(const Frame& frame, Winding winding) {
+  TriangleMesh m;
+  m.source = std::string("room with a window closed by a second room, and a box, ") + to_string(winding) + ", " +
+             frame.describe();
+  const double s = winding == Winding::natural ? 1 : -1;  // +1: front sides inward
+  auto P = [&](double x, double y, double z) { return frame.place(Vec3(x, y, z)); };
+  add_polygon_facing(m, {P(0, 0, 0), P(1, 0, 0), P(1, 1, 0), P(0, 1, 0)}, s * Vec3(0, 0, 1));   // floor
+  add_polygon_facing(m, {P(0, 0, 1), P(1, 0, 1), P(1, 1, 1), P(0, 1, 1)}, s * Vec3(0, 0, -1));  // ceiling
+  add_polygon_facing(m, {P(0, 0, 0), P(1, 0, 0), P(1, 0, 1), P(0, 0, 1)}, s * Vec3(0, 1, 0));   // y = 0
+  add_polygon_facing(m, {P(0, 1, 0), P(1, 1, 0), P(1, 1, 1), P(0, 1, 1)}, s * Vec3(0, -1, 0));  // y = 1
+  add_polygon_facing(m, {P(0, 0, 0), P(0, 1, 0), P(0, 1, 1), P(0, 0, 1)}, s * Vec3(1, 0, 0));   // x = 0
+  const Vec3 in_x = s * Vec3(-1, 0, 0);  // the wall x = 1 around the window
+  add_polygon_facing(m, {P(1, 0, 0), P(1, 1, 0), P(1, 1, 0.3), P(1, 0, 0.3)}, in_x);
+  add_polygon_facing(m, {P(1, 0, 0.7), P(1, 1, 0.7), P(1, 1, 1), P(1, 0, 1)}, in_x);
+  add_polygon_facing(m, {P(1, 0, 0.3), P(1, 0.3, 0.3), P(1, 0.3, 0.7), P(1, 0, 0.7)}, in_x);
+  add_polygon_facing(m, {P(1, 0.7, 0.3), P(1, 1, 0.3), P(1, 1, 0.7), P(1, 0.7, 0.7)}, in_x);
+  // The second room beyond the window, open at x = 1.
+  add_polygon_facing(m, {P(1, 0.3, 0.3), P(1.5, 0.3, 0.3), P(1.5, 0.7, 0.3), P(1, 0.7, 0.3)}, s * Vec3(0, 0, 1));
+  add_polygon_facing(m, {P(1, 0.3, 0.7), P(1.5, 0.3, 0.7), P(1.5, 0.7, 0.7), P(1, 0.7, 0.7)}, s * Vec3(0, 0, -1));
+  add_polygon_facing(m, {P(1, 0.3, 0.3), P(1.5, 0.3, 0.3), P(1.5, 0.3, 0.7), P(1, 0.3, 0.7)}, s * Vec3(0, 1, 0));
+  add_polygon_facing(m, {P(1, 0.7, 0.3), P(1.5, 0.7, 0.3), P(1.5, 0.7, 0.7), P(1, 0.7, 0.7)}, s * Vec3(0, -1, 0));
+  add_polygon_facing(m, {P(1.5, 0.3, 0.3), P(1.5, 0.7, 0.3), P(1.5, 0.7, 0.7), P(1.5, 0.3, 0.7)}, s * Vec3(-1, 0, 0));
+  add_axis_box(m, P(0.2, 0.3, 0.2), P(0.5, 0.6, 0.5), winding == Winding::natural ? BoxFront::outside : BoxFront::inside);
+  return m;
+}
+
 // ------------------------------------------------------------------------------------------------
 // Prism rooms as OBJ text: the floor and the ceiling one polygon each
 

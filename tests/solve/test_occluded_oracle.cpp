@@ -172,6 +172,11 @@ TEST_P(OccludedOracle, TJunctionRoomWithABox) {
     expect_constant_solution(testing::t_junction_room_with_box(GetParam(), w), true);
 }
 
+TEST_P(OccludedOracle, RoomWithAWindowClosedByASecondRoom) {
+  for (const Winding w : {Winding::natural, Winding::reversed})
+    expect_constant_solution(testing::room_with_window_closed_by_second_room(GetParam(), w), true);
+}
+
 // The floor and a rug on it both face up: a coplanar overlap with the same front side, refused
 // as a crossing whichever way the room is wound (its floor faces up either way).
 TEST_P(OccludedOracle, CoplanarOverlapWithTheSameFrontIsRefused) {
