@@ -289,6 +289,16 @@ inline TriangleMesh room_with_rug(const Frame& frame, BoxFront room_front) {
   return m;
 }
 
+/// The floor, the ceiling and the walls y = 0 and y = 1 of the room [0, 1]^3 placed by `frame`,
+/// fronts inward when s = 1 (outward when s = -1).
+inline void add_room_floor_ceiling_and_side_walls(TriangleMesh& m, const Frame& frame, double s) {
+  auto P = [&](double x, double y, double z) { return frame.place(Vec3(x, y, z)); };
+  add_polygon_facing(m, {P(0, 0, 0), P(1, 0, 0), P(1, 1, 0), P(0, 1, 0)}, s * Vec3(0, 0, 1));   // floor
+  add_polygon_facing(m, {P(0, 0, 1), P(1, 0, 1), P(1, 1, 1), P(0, 1, 1)}, s * Vec3(0, 0, -1));  // ceiling
+  add_polygon_facing(m, {P(0, 0, 0), P(1, 0, 0), P(1, 0, 1), P(0, 0, 1)}, s * Vec3(0, 1, 0));   // y = 0
+  add_polygon_facing(m, {P(0, 1, 0), P(1, 1, 0), P(1, 1, 1), P(0, 1, 1)}, s * Vec3(0, -1, 0));  // y = 1
+}
+
 /// The room [0, 1]^3 with its wall x = 0 given as two rectangles split at y = 0.5: the split
 /// edge ends on the middle of the floor's edge and of the ceiling's (two T-junctions), with the
 /// box [0.4, 0.7] x [0.3, 0.6] x [0.2, 0.5] inside. The room's polygons run counter-clockwise
@@ -299,10 +309,7 @@ inline TriangleMesh t_junction_room_with_box(const Frame& frame, Winding winding
              frame.describe();
   const double s = winding == Winding::natural ? 1 : -1;  // +1: front sides inward
   auto P = [&](double x, double y, double z) { return frame.place(Vec3(x, y, z)); };
-  add_polygon_facing(m, {P(0, 0, 0), P(1, 0, 0), P(1, 1, 0), P(0, 1, 0)}, s * Vec3(0, 0, 1));   // floor
-  add_polygon_facing(m, {P(0, 0, 1), P(1, 0, 1), P(1, 1, 1), P(0, 1, 1)}, s * Vec3(0, 0, -1));  // ceiling
-  add_polygon_facing(m, {P(0, 0, 0), P(1, 0, 0), P(1, 0, 1), P(0, 0, 1)}, s * Vec3(0, 1, 0));   // y = 0
-  add_polygon_facing(m, {P(0, 1, 0), P(1, 1, 0), P(1, 1, 1), P(0, 1, 1)}, s * Vec3(0, -1, 0));  // y = 1
+  add_room_floor_ceiling_and_side_walls(m, frame, s);
   add_polygon_facing(m, {P(1, 0, 0), P(1, 1, 0), P(1, 1, 1), P(1, 0, 1)}, s * Vec3(-1, 0, 0));  // x = 1
   add_polygon_facing(m, {P(0, 0, 0), P(0, 0.5, 0), P(0, 0.5, 1), P(0, 0, 1)}, s * Vec3(1, 0, 0));  // x = 0, y <= 0.5
   add_polygon_facing(m, {P(0, 0.5, 0), P(0, 1, 0), P(0, 1, 1), P(0, 0.5, 1)}, s * Vec3(1, 0, 0));  // x = 0, y >= 0.5
@@ -321,10 +328,7 @@ inline TriangleMesh room_with_window_closed_by_second_room(const Frame& frame, W
              frame.describe();
   const double s = winding == Winding::natural ? 1 : -1;  // +1: front sides inward
   auto P = [&](double x, double y, double z) { return frame.place(Vec3(x, y, z)); };
-  add_polygon_facing(m, {P(0, 0, 0), P(1, 0, 0), P(1, 1, 0), P(0, 1, 0)}, s * Vec3(0, 0, 1));   // floor
-  add_polygon_facing(m, {P(0, 0, 1), P(1, 0, 1), P(1, 1, 1), P(0, 1, 1)}, s * Vec3(0, 0, -1));  // ceiling
-  add_polygon_facing(m, {P(0, 0, 0), P(1, 0, 0), P(1, 0, 1), P(0, 0, 1)}, s * Vec3(0, 1, 0));   // y = 0
-  add_polygon_facing(m, {P(0, 1, 0), P(1, 1, 0), P(1, 1, 1), P(0, 1, 1)}, s * Vec3(0, -1, 0));  // y = 1
+  add_room_floor_ceiling_and_side_walls(m, frame, s);
   add_polygon_facing(m, {P(0, 0, 0), P(0, 1, 0), P(0, 1, 1), P(0, 0, 1)}, s * Vec3(1, 0, 0));   // x = 0
   const Vec3 in_x = s * Vec3(-1, 0, 0);  // the wall x = 1 around the window
   add_polygon_facing(m, {P(1, 0, 0), P(1, 1, 0), P(1, 1, 0.3), P(1, 0, 0.3)}, in_x);
