@@ -42,30 +42,24 @@ def test_sigint_from_another_thread_stops_a_running_solve():
     """The real Ctrl-C path: SIGINT arrives while the main thread is inside the library with the GIL
     released; the solver's next product runs the handler and stops. The solve cannot end by
     itself early: with rho = 0.999 the Neumann iteration's error shrinks by 0.999 a step, far
-    above the tolerance after 40,000 steps. An uninterrupted run is estimated from 1,000 steps (x40);
-    the signal is sent 0.2 s after the start. A library that ignored the signal would return only
-    after the whole run (and Python would then raise KeyboardInterrupt all the same), so the test
-    also requires the interrupted run to take under a quarter of the estimate: the interrupted run
-    takes about 0.2 s plus one product, the estimate tens of seconds."""
+    above the tolerance after 40,000 steps. The signal is sent 0.2 s after the start. A library
+    that ignored the signal would return only after all 40,000 products (and Python would then
+    raise KeyboardInterrupt all the same), so the products are counted through the progress lines:
+    the interrupted solve must have made fewer than half of them."""
     import threading
-    import time
 
     import numpy as np
 
-    cube = panelrad.paper_cube()
-    probe = panelrad.Solver(cube, level=3, method="dense", solver="neumann", tolerance=1e-12, max_iterations=1000)
-    rho, E = np.full(probe.n, 0.999), np.ones(probe.n)
-    t = time.perf_counter()
-    short = probe.solve(rho, E)
-    estimate_s = 40 * (time.perf_counter() - t)
-    assert not short.converged
-    solver = panelrad.Solver(cube, level=3, method="dense", solver="neumann", tolerance=1e-12, max_iterations=40000)
+    products = []
+    solver = panelrad.Solver(panelrad.paper_cube(), level=3, method="dense", solver="neumann", tolerance=1e-12,
+                             max_iterations=40000, progress=lambda line: products.append(line) if "product" in line else None)
+    rho, E = np.full(solver.n, 0.999), np.ones(solver.n)
+    products.clear()
     timer = threading.Timer(0.2, os.kill, (os.getpid(), signal.SIGINT))
-    t = time.perf_counter()
     timer.start()
     try:
         with pytest.raises(KeyboardInterrupt):
             solver.solve(rho, E)
     finally:
         timer.join()
-    assert time.perf_counter() - t < 0.25 * estimate_s
+    assert 0 < len(products) < 20000
