@@ -17,6 +17,7 @@
 // corners that are input vertices keep their index; new corners (where outlines cross) are lifted
 // to the triangle's plane exactly and rounded once to double, shared between triangles by value.
 #include "contact_removal.hpp"
+#include "t_junctions.hpp"
 
 #include <CGAL/Bbox_3.h>
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
@@ -27,6 +28,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <utility>
 
@@ -103,9 +105,12 @@ std::vector<Tri> remainder(const TriangleMesh& mesh, Index t, const std::vector<
     EK::FT rest = plane.d() + coeff[at(u_axis)] * xu + coeff[at(w_axis)] * xw;
     const EK::FT xa = -rest / coeff[at(axis)];
     std::array<double, 3> key{};
-    key[at(axis)] = CGAL::to_double(xa);
-    key[at(u_axis)] = CGAL::to_double(xu);
-    key[at(w_axis)] = CGAL::to_double(xw);
+    // Rounded from the exact value, not from the lazy kernel's interval, so that the same point
+    // reached through two triangles (the crossing of an outline with an edge they share) is the
+    // same double, and so the same corner.
+    key[at(axis)] = CGAL::to_double(CGAL::exact(xa));
+    key[at(u_axis)] = CGAL::to_double(CGAL::exact(xu));
+    key[at(w_axis)] = CGAL::to_double(CGAL::exact(xw));
     const auto [it, fresh] = made.emplace(key, static_cast<Index>(vertices.size()));
     if (fresh) vertices.emplace_back(key[0], key[1], key[2]);
     return it->second;
@@ -125,20 +130,81 @@ std::vector<Tri> remainder(const TriangleMesh& mesh, Index t, const std::vector<
   return out;
 }
 
-/// The triangles' projections (dropping `axis`) overlap with positive area: no edge line of
-/// either weakly separates them (exact 2-D orientations of the projected corners).
-bool projections_overlap(const TriangleMesh& mesh, const Tri& t, const Tri& u, int axis) {
-  const auto separated = [&](const Tri& a, const Tri& b) {
-    const CGAL::Orientation o = projected_orientation(mesh, a, axis);
-    for (int s = 0; s < 3; ++s) {
-      const EPoint2 p = project(mesh.vertices[at(a[at(s)])], axis), q = project(mesh.vertices[at(a[at((s + 1) % 3)])], axis);
-      bool inner = false;
-      for (Index v : b) inner = inner || CGAL::orientation(p, q, project(mesh.vertices[at(v)], axis)) == o;
-      if (!inner) return true;
+/// The corners of input face f (sorted vertex indices of its triangles).
+std::vector<Index> polygon_corners(const TriangleMesh& mesh, Index f) {
+  std::vector<Index> v;
+  for (Sz t = 0; t < mesh.triangles.size(); ++t)
+    if (mesh.facet_of_triangle[t] == f) v.insert(v.end(), mesh.triangles[t].begin(), mesh.triangles[t].end());
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+  return v;
+}
+
+/// Faces f and g are one polygon: the same corners (the readers merge coincident vertices, so a
+/// polygon written twice on separate vertices has the same corners too), triangulated either way.
+bool same_polygon(const TriangleMesh& mesh, Index f, Index g) { return polygon_corners(mesh, f) == polygon_corners(mesh, g); }
+
+/// A mesh whose triangles were cut by cut_covered.
+struct CutMesh {
+  TriangleMesh mesh;
+  std::vector<Index> origin;              ///< per triangle of `mesh`, the triangle it is (part of)
+  std::vector<double> removed_of_facet;   ///< per input face, the area removed
+  Sz triangles_cut = 0;                   ///< triangles with covers (cut or removed)
+};
+
+/// Each triangle t minus the union of covers[t] (triangles coplanar with it), re-triangulated by
+/// remainder(), without the pieces no higher than `sliver`; the others kept as they are. Facet ids and orientations kept; vertices no
+/// triangle uses any more dropped, the order of the others kept.
+CutMesh cut_covered(const TriangleMesh& mesh, const std::vector<std::vector<Index>>& covers, double sliver) {
+  CutMesh out;
+  out.mesh.num_facets = mesh.num_facets;
+  out.mesh.source = mesh.source;
+  out.mesh.facet_line = mesh.facet_line;
+  out.removed_of_facet.assign(at(mesh.num_facets), 0.0);
+  std::map<std::array<double, 3>, Index> made;
+  for (Sz v = 0; v < mesh.vertices.size(); ++v)
+    made.emplace(std::array<double, 3>{mesh.vertices[v].x(), mesh.vertices[v].y(), mesh.vertices[v].z()}, static_cast<Index>(v));
+  std::vector<Vec3> vertices = mesh.vertices;
+  const Sz nt = mesh.triangles.size();
+  for (Sz t = 0; t < nt; ++t) {
+    const Index f = mesh.facet_of_triangle[t];
+    if (covers[t].empty()) {
+      out.mesh.triangles.push_back(mesh.triangles[t]);
+      out.mesh.facet_of_triangle.push_back(f);
+      out.origin.push_back(static_cast<Index>(t));
+      continue;
     }
-    return false;
-  };
-  return !separated(t, u) && !separated(u, t);
+    const std::vector<Tri> rest = remainder(mesh, static_cast<Index>(t), covers[t], vertices, made);
+    const Tri& tr = mesh.triangles[t];
+    double kept = 0;
+    for (const Tri& r : rest) {
+      // Two corners of the exact cut that round to one double, or three that round onto one line:
+      // a sliver narrower than the rounding, dropped (no area, nothing to see).
+      const auto pt = [&](Index v) { return Point(vertices[at(v)].x(), vertices[at(v)].y(), vertices[at(v)].z()); };
+      if (r[0] == r[1] || r[1] == r[2] || r[2] == r[0] || CGAL::collinear(pt(r[0]), pt(r[1]), pt(r[2]))) continue;
+      const Vec3 &a = vertices[at(r[0])], &b = vertices[at(r[1])], &c = vertices[at(r[2])];
+      const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+      if (2 * triangle_area(a, b, c) <= sliver * longest) continue;  // its height: a slit below the resolution
+      kept += triangle_area(vertices[at(r[0])], vertices[at(r[1])], vertices[at(r[2])]);
+      out.mesh.triangles.push_back(r);
+      out.mesh.facet_of_triangle.push_back(f);
+      out.origin.push_back(static_cast<Index>(t));
+    }
+    const double whole = triangle_area(mesh.vertices[at(tr[0])], mesh.vertices[at(tr[1])], mesh.vertices[at(tr[2])]);
+    out.removed_of_facet[at(f)] += std::max(0.0, whole - kept);
+    ++out.triangles_cut;
+  }
+  std::vector<Index> index(vertices.size(), kNone);
+  for (const Tri& tr : out.mesh.triangles)
+    for (Index v : tr) index[at(v)] = 0;
+  for (Sz v = 0; v < index.size(); ++v)
+    if (index[v] == 0) {
+      index[v] = static_cast<Index>(out.mesh.vertices.size());
+      out.mesh.vertices.push_back(vertices[v]);
+    }
+  for (Tri& tr : out.mesh.triangles)
+    for (Index& v : tr) v = index[at(v)];
+  return out;
 }
 
 /// Where the vertices of `u` lie relative to the plane of `t` (exact): +1 all on the front side
@@ -156,16 +222,51 @@ int side_of(const std::vector<Point>& p, const Tri& t, const Tri& u) {
 
 }  // namespace
 
-std::vector<Overlap> faces_across_a_gap(const TriangleMesh& mesh, double resolution) {
+/// The projections of t and u along the dominant axis of t's normal overlap by more than `tol`:
+/// no edge line of either has all of the other within `tol` on its inner side (separating axes,
+/// in double precision: faces meeting along an edge within the rounding of their corners, as
+/// two flush sides of a step, only touch).
+bool projections_overlap(const TriangleMesh& mesh, const Tri& t, const Tri& u, double tol) {
+  const Vec3& a = mesh.vertices[at(t[0])];
+  int axis = 0;
+  (mesh.vertices[at(t[1])] - a).cross(mesh.vertices[at(t[2])] - a).cwiseAbs().maxCoeff(&axis);
+  const int p = (axis + 1) % 3, q = (axis + 2) % 3;
+  const auto pt = [&](Index v) { return Eigen::Vector2d(mesh.vertices[at(v)][p], mesh.vertices[at(v)][q]); };
+  const auto cross = [](const Eigen::Vector2d& x, const Eigen::Vector2d& y) { return x.x() * y.y() - x.y() * y.x(); };
+  const auto separated = [&](const Tri& x, const Tri& y) {
+    const double o = cross(pt(x[1]) - pt(x[0]), pt(x[2]) - pt(x[0]));
+    if (o == 0) return true;
+    for (int s = 0; s < 3; ++s) {
+      const Eigen::Vector2d e0 = pt(x[at(s)]), e = pt(x[at((s + 1) % 3)]) - e0;
+      const double length = e.norm();
+      bool inner = false;
+      for (Index v : y) inner = inner || std::copysign(1.0, o) * cross(e, pt(v) - e0) > tol * length;
+      if (!inner) return true;
+    }
+    return false;
+  };
+  return !separated(t, u) && !separated(u, t);
+}
+
+std::vector<Overlap> faces_across_a_gap(const TriangleMesh& mesh, const ContactTolerance& tolerance) {
   std::vector<Overlap> out;
-  if (!(resolution > 0)) return out;
+  if (!(tolerance.resolution > 0)) return out;
   const std::vector<Point> p = exact_points(mesh);
   using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, Index>;
   std::vector<Box> boxes;
   boxes.reserve(mesh.triangles.size());
+  const auto size_of = [&](const Tri& t) {
+    double s = 0;
+    for (int k = 0; k < 3; ++k) s = std::max(s, (mesh.vertices[at(t[at(k)])] - mesh.vertices[at(t[at((k + 1) % 3)])]).norm());
+    return s;
+  };
   for (Sz t = 0; t < mesh.triangles.size(); ++t) {
     const Tri& tr = mesh.triangles[t];
     CGAL::Bbox_3 b = p[at(tr[0])].bbox() + p[at(tr[1])].bbox() + p[at(tr[2])].bbox();
+    // Wide enough for any pair: the tolerance of a pair is its larger face's at most, and the
+    // size of a pair at least its larger triangle's.
+    const double f = mesh.facet_of_triangle[t];
+    const double resolution = tolerance.of(static_cast<Index>(f), static_cast<Index>(f), 2 * size_of(tr)) * 1.000001;
     b = CGAL::Bbox_3(b.xmin() - resolution, b.ymin() - resolution, b.zmin() - resolution, b.xmax() + resolution,
                      b.ymax() + resolution, b.zmax() + resolution);
     boxes.emplace_back(b, static_cast<Index>(t));
@@ -176,7 +277,7 @@ std::vector<Overlap> faces_across_a_gap(const TriangleMesh& mesh, double resolut
   });
   std::sort(candidates.begin(), candidates.end());
   candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-  const auto near_plane = [&](const Tri& t, const Tri& u) {
+  const auto near_plane = [&](const Tri& t, const Tri& u, double resolution) {
     const Vec3 &a = mesh.vertices[at(t[0])], &b = mesh.vertices[at(t[1])], &c = mesh.vertices[at(t[2])];
     for (Index v : u)
       if (!(std::abs(plane_distance(a, b, c, mesh.vertices[at(v)])) <= resolution)) return false;
@@ -189,15 +290,23 @@ std::vector<Overlap> faces_across_a_gap(const TriangleMesh& mesh, double resolut
     // check_no_crossing already). Back to back, neither sees the other anyway; facing each other
     // they are a contact, facing the same way the same surface twice (remove_contacts decides).
     const int si = side_of(p, ti, tj), sj = side_of(p, tj, ti);
-    if (si == 0 || sj == 0 || (si == -1 && sj == -1)) continue;
-    if (!near_plane(ti, tj) || !near_plane(tj, ti)) continue;
-    int axis = 0;
-    ((mesh.vertices[at(ti[1])] - mesh.vertices[at(ti[0])]).cross(mesh.vertices[at(ti[2])] - mesh.vertices[at(ti[0])]))
-        .cwiseAbs()
-        .maxCoeff(&axis);
-    if (!projections_overlap(mesh, ti, tj, axis)) continue;
+    if (si == 0 || sj == 0) continue;
+    const Index fi = mesh.facet_of_triangle[at(i)], fj = mesh.facet_of_triangle[at(j)];
+    const double size = std::max(size_of(ti), size_of(tj));
+    double resolution = tolerance.of(fi, fj, size);
+    if (si == -1 && sj == -1) {
+      // Back to back, neither sees the other: apart, unless within the rounding of their
+      // corners as written (a box's bottom an ulp below the floor it stands on: in contact).
+      const double r = std::max(at(fi) < tolerance.rounding.size() ? tolerance.rounding[at(fi)] : 0.0,
+                                at(fj) < tolerance.rounding.size() ? tolerance.rounding[at(fj)] : 0.0);
+      resolution = std::min(8 * r, 1e-4 * size);
+      if (!(resolution > 0)) continue;
+    }
+    if (!near_plane(ti, tj, resolution) || !near_plane(tj, ti, resolution)) continue;
+    if (!projections_overlap(mesh, ti, tj, resolution)) continue;
     const Vec3 ci = (mesh.vertices[at(ti[0])] + mesh.vertices[at(ti[1])] + mesh.vertices[at(ti[2])]) / 3.0;
-    out.push_back({i, j, ci, true});
+    const bool back_to_back = si == -1 && sj == -1;
+    out.push_back({i, j, ci, !back_to_back, back_to_back});
   }
   return out;
 }
@@ -222,17 +331,19 @@ std::optional<Failure> remove_contacts(TriangleMesh& mesh, const std::vector<Ove
     const std::string faces = d.faces(fi, fj);
     const std::string triangles = " (" + d.triangle(i) + " and " + d.triangle(j) + ")";
     if (projected_orientation(mesh, ti, axis) == projected_orientation(mesh, tj, axis)) {
-      std::array<Index, 3> a = ti, b = tj;
-      std::sort(a.begin(), a.end());
-      std::sort(b.begin(), b.end());
-      const std::string what = a == b ? faces + " are the same triangle given twice"
-                               : o.across_gap
-                                   ? faces + " lie closer than the visibility's resolution (" + sci(resolution) +
-                                         ") with the same front side at " + point_text(o.point)
-                                   : faces + " overlap in one plane with the same front side at " + point_text(o.point);
+      if (same_polygon(mesh, fi, fj))
+        return Failure{"crossing", d.face(fj) + " duplicates " + d.face(fi) +
+                                       ": the same polygon with the same front side, so which of the two is seen is "
+                                       "not defined; remove one of them (a surface seen from both sides is the "
+                                       "polygon given twice with opposite windings, away from any solid)"};
+      const std::string what =
+          o.across_gap ? faces + " lie closer than the visibility's resolution (" + sci(resolution) +
+                             ") with the same front side at " + point_text(o.point)
+                       : faces + " overlap in one plane with the same front side at " + point_text(o.point);
       return Failure{"crossing", what + triangles +
                                      ": the surface is there twice, so which of the two is seen is not defined; "
-                                     "remove one of them, or cut them so that they only touch"};
+                                     "remove one of them, or cut them so that they only touch (an opening in a wall: the "
+                                     "wall as polygons around it, the opening a face of its own)"};
     }
     if (!in_closed_piece[at(i)] && !in_closed_piece[at(j)]) {
       if (o.across_gap)
@@ -240,62 +351,45 @@ std::optional<Failure> remove_contacts(TriangleMesh& mesh, const std::vector<Ove
                                        sci(resolution) + ") at " + point_text(o.point) + triangles +
                                        ", and neither belongs to a closed piece: they can be told neither apart "
                                        "nor in contact; move them apart by more than that, or make them touch"};
-      return Failure{"crossing", faces + " overlap in one plane back to back at " + point_text(o.point) + triangles +
-                                     ", and neither belongs to a closed piece, so neither covers the other: two "
-                                     "one-sided sheets would stay in one place; give a two-sided wall as a thin "
-                                     "closed box, or cut the faces so that they only touch"};
+      // Back to back in one plane, neither bounding matter: a two-sided sheet where they overlap.
+      // Both stay, each seen from its own front side; neither covers the other.
+      out.two_sided.insert(std::minmax(fi, fj));
+      continue;
     }
     if (o.across_gap) ++out.across_gap;
     // Opposite front sides: each covers the other where the other's back is solid matter.
     if (in_closed_piece[at(j)]) covers[at(i)].push_back(j);
     if (in_closed_piece[at(i)]) covers[at(j)].push_back(i);
   }
-  std::map<std::array<double, 3>, Index> made;
-  for (Sz v = 0; v < mesh.vertices.size(); ++v) made.emplace(std::array<double, 3>{mesh.vertices[v].x(), mesh.vertices[v].y(), mesh.vertices[v].z()}, static_cast<Index>(v));
-  std::vector<Vec3> vertices = mesh.vertices;
-  std::vector<Tri> triangles;
-  std::vector<Index> facets;
-  triangles.reserve(nt);
-  facets.reserve(nt);
-  std::vector<double>& removed_of_facet = out.removed_of_facet;
-  removed_of_facet.resize(at(mesh.num_facets), 0.0);
-  for (Sz t = 0; t < nt; ++t) {
-    const Index f = mesh.facet_of_triangle[t];
-    if (covers[t].empty()) {
-      triangles.push_back(mesh.triangles[t]);
-      facets.push_back(f);
-      continue;
+  CutMesh cut = cut_covered(mesh, covers, resolution);
+  for (Sz f = 0; f < cut.removed_of_facet.size(); ++f) out.removed_of_facet[f] += cut.removed_of_facet[f];
+  out.triangles_cut += cut.triangles_cut;
+  // An open piece's face wholly against a solid's face, its front side looking into the matter:
+  // none of it would be seen, and dropping it without a word hides what the file says (a window
+  // written as a polygon on a wall, a lamp given on the face of a body).
+  std::vector<char> kept_facet(at(mesh.num_facets), 0), open_facet(at(mesh.num_facets), 0);
+  for (Index f : cut.mesh.facet_of_triangle) kept_facet[at(f)] = 1;
+  for (Sz t = 0; t < nt; ++t)
+    if (!in_closed_piece[t]) open_facet[at(mesh.facet_of_triangle[t])] = 1;
+  for (const Overlap& o : overlaps) {
+    for (const auto& [mine, other] : {std::pair{o.i, o.j}, std::pair{o.j, o.i}}) {
+      const Index f = mesh.facet_of_triangle[at(mine)], g = mesh.facet_of_triangle[at(other)];
+      if (kept_facet[at(f)] || !open_facet[at(f)] || !in_closed_piece[at(other)]) continue;
+      return Failure{"crossing",
+                     (same_polygon(mesh, f, g) ? d.face(f) + " duplicates " + d.face(g) + ", with the opposite winding,"
+                                               : d.face(f) + " lies wholly on " + d.face(g)) +
+                         " of a closed surface, its front side looking into that surface's solid matter, so none of "
+                         "it would be seen. To cut an opening (a window) into a wall, leave the opening out of the "
+                         "wall's polygons (the wall as polygons around the opening) and give the opening as a face "
+                         "of its own, its front side facing the room; a face lying on a solid's face facing the "
+                         "room is given as part of that face"};
     }
-    const std::vector<Tri> rest = remainder(mesh, static_cast<Index>(t), covers[t], vertices, made);
-    const Tri& tr = mesh.triangles[t];
-    double kept = 0;
-    for (const Tri& r : rest) {
-      kept += triangle_area(vertices[at(r[0])], vertices[at(r[1])], vertices[at(r[2])]);
-      triangles.push_back(r);
-      facets.push_back(f);
-    }
-    const double whole = triangle_area(mesh.vertices[at(tr[0])], mesh.vertices[at(tr[1])], mesh.vertices[at(tr[2])]);
-    removed_of_facet[at(f)] += std::max(0.0, whole - kept);
-    ++out.triangles_cut;
   }
-  for (const Overlap& o : overlaps) out.pairs.insert(std::minmax(mesh.facet_of_triangle[at(o.i)], mesh.facet_of_triangle[at(o.j)]));
-  mesh.vertices = std::move(vertices);
-  mesh.triangles = std::move(triangles);
-  mesh.facet_of_triangle = std::move(facets);
-  // Drop the vertices no triangle uses any more (corners of removed contact faces), keeping the
-  // order of the others.
-  std::vector<Index> index(mesh.vertices.size(), kNone);
-  for (const Tri& tr : mesh.triangles)
-    for (Index v : tr) index[at(v)] = 0;
-  Index next = 0;
-  for (Sz v = 0; v < index.size(); ++v)
-    if (index[v] == 0) {
-      index[v] = next;
-      mesh.vertices[at(next++)] = mesh.vertices[v];
-    }
-  mesh.vertices.resize(at(next));
-  for (Tri& tr : mesh.triangles)
-    for (Index& v : tr) v = index[at(v)];
+  for (const Overlap& o : overlaps) {
+    const auto pair = std::minmax(mesh.facet_of_triangle[at(o.i)], mesh.facet_of_triangle[at(o.j)]);
+    if (!out.two_sided.count(pair)) out.pairs.insert(pair);
+  }
+  mesh = std::move(cut.mesh);
   return std::nullopt;
 }
 
@@ -332,67 +426,104 @@ std::vector<ContactReport::Touch> ContactReport::touching() const {
   return t;
 }
 
-bool remove_shared_contact_faces(TriangleMesh& mesh, std::vector<Overlap>& overlaps, ScenePieces& pieces,
-                                 ContactReport& out) {
+bool merge_contacts_into_closed_pieces(TriangleMesh& mesh, std::vector<Overlap>& overlaps, ScenePieces& pieces,
+                                       const ContactTolerance& tolerance, ContactReport& out) {
   const Sz nt = mesh.triangles.size();
-  const auto sorted = [](Tri t) {
-    std::sort(t.begin(), t.end());
+  // Candidates: overlaps in one plane (or within the rounding) of opposite windings as written,
+  // between open pieces as the faces are written.
+  std::vector<Overlap> candidates;
+  for (const Overlap& o : overlaps) {
+    if (o.across_gap) continue;
+    const Tri &ti = mesh.triangles[at(o.i)], &tj = mesh.triangles[at(o.j)];
+    int axis = 0;
+    ((mesh.vertices[at(ti[1])] - mesh.vertices[at(ti[0])]).cross(mesh.vertices[at(ti[2])] - mesh.vertices[at(ti[0])]))
+        .cwiseAbs()
+        .maxCoeff(&axis);
+    if (projected_orientation(mesh, ti, axis) != projected_orientation(mesh, tj, axis)) candidates.push_back(o);
+  }
+  if (candidates.empty()) return false;
+  ScenePieces written;
+  {
+    TriangleMesh copy = mesh;
+    if (orient_scene_pieces(copy, written)) written.in_closed_piece.assign(nt, 0);
+  }
+  std::erase_if(candidates, [&](const Overlap& o) { return written.in_closed_piece[at(o.i)] || written.in_closed_piece[at(o.j)]; });
+  if (candidates.empty()) return false;
+  // Contacts: triangles joined by candidate overlaps (union-find).
+  std::vector<Index> parent(nt);
+  for (Sz t = 0; t < nt; ++t) parent[t] = static_cast<Index>(t);
+  const std::function<Index(Index)> root = [&](Index t) {
+    while (parent[at(t)] != t) t = parent[at(t)] = parent[at(parent[at(t)])];
     return t;
   };
-  std::vector<char> drop(nt, 0);
-  std::vector<std::pair<Index, Index>> shared;
-  for (const Overlap& o : overlaps) {
-    const Tri &ti = mesh.triangles[at(o.i)], &tj = mesh.triangles[at(o.j)];
-    if (o.across_gap || drop[at(o.i)] || drop[at(o.j)] || sorted(ti) != sorted(tj)) continue;
-    drop[at(o.i)] = drop[at(o.j)] = 1;
-    shared.emplace_back(o.i, o.j);
-  }
-  if (shared.empty()) return false;
-  TriangleMesh trial = mesh;
-  trial.triangles.clear();
-  trial.facet_of_triangle.clear();
-  std::vector<Index> renumber(nt, kNone);
+  for (const Overlap& o : candidates) parent[at(root(o.i))] = root(o.j);
+  // The edges of the input triangles, to find the triangles next to a contact.
+  std::map<std::pair<Index, Index>, std::vector<Index>> edge_triangles;
   for (Sz t = 0; t < nt; ++t)
-    if (!drop[t]) {
-      renumber[t] = static_cast<Index>(trial.triangles.size());
-      trial.triangles.push_back(mesh.triangles[t]);
-      trial.facet_of_triangle.push_back(mesh.facet_of_triangle[t]);
-    }
-  if (trial.triangles.empty()) return false;
-  ScenePieces trial_pieces;
-  if (orient_scene_pieces(trial, trial_pieces)) return false;
-  // Every triangle of the trial with an edge of a removed triangle must be in a closed piece.
-  std::set<std::pair<Index, Index>> contact_edges;
-  for (Sz t = 0; t < nt; ++t)
-    if (drop[t])
-      for (int s = 0; s < 3; ++s)
-        contact_edges.insert(std::minmax(mesh.triangles[t][at(s)], mesh.triangles[t][at((s + 1) % 3)]));
-  for (Sz t = 0; t < trial.triangles.size(); ++t)
     for (int s = 0; s < 3; ++s)
-      if (contact_edges.count(std::minmax(trial.triangles[t][at(s)], trial.triangles[t][at((s + 1) % 3)])) &&
-          !trial_pieces.in_closed_piece[t])
-        return false;
-  out.removed_of_facet.resize(at(mesh.num_facets), 0.0);
-  for (const auto& [i, j] : shared) {
-    const Tri& t = mesh.triangles[at(i)];
-    const double a = triangle_area(mesh.vertices[at(t[0])], mesh.vertices[at(t[1])], mesh.vertices[at(t[2])]);
-    const Index fi = mesh.facet_of_triangle[at(i)], fj = mesh.facet_of_triangle[at(j)];
-    out.removed_of_facet[at(fi)] += a;
-    out.removed_of_facet[at(fj)] += a;
-    out.pairs.insert(std::minmax(fi, fj));
-    out.triangles_cut += 2;
-  }
-  std::vector<Overlap> kept;
-  for (Overlap o : overlaps)
-    if (!drop[at(o.i)] && !drop[at(o.j)]) {
-      o.i = renumber[at(o.i)];
-      o.j = renumber[at(o.j)];
-      kept.push_back(o);
+      edge_triangles[std::minmax(mesh.triangles[t][at(s)], mesh.triangles[t][at((s + 1) % 3)])].push_back(
+          static_cast<Index>(t));
+  std::set<Index> refused;  // contacts (roots) left as they are
+  for (;;) {
+    std::vector<std::vector<Index>> covers(nt);
+    for (const Overlap& o : candidates)
+      if (!refused.count(root(o.i))) {
+        covers[at(o.i)].push_back(o.j);
+        covers[at(o.j)].push_back(o.i);
+      }
+    CutMesh cut = cut_covered(mesh, covers, tolerance.resolution);
+    join_close_corners(cut.mesh, tolerance.resolution, &cut.origin);
+    if (cut.mesh.triangles.empty()) return false;
+    // The cut leaves a side of a solid whose edge the other solid's sides now meet in two pieces
+    // (a step: the upper box's side and the rest of the lower box's top): split there.
+    split_t_junctions(cut.mesh, &cut.origin, largest_tolerance(tolerance, diameter(cut.mesh)));
+    ScenePieces trial;
+    if (orient_scene_pieces(cut.mesh, trial)) return false;
+    // Its rim: what is left of the contact's triangles, and the uncut triangles sharing an edge
+    // with them. Two solids in contact join into one closed surface across it; anything else
+    // (two sheets back to back, a polygon given twice) leaves no rim, or an open one.
+    std::vector<std::set<Index>> next_to(nt);  // per uncut triangle, the contacts it borders
+    for (Sz t = 0; t < nt; ++t) {
+      if (covers[t].empty()) continue;
+      for (int s = 0; s < 3; ++s)
+        for (Index u : edge_triangles[std::minmax(mesh.triangles[t][at(s)], mesh.triangles[t][at((s + 1) % 3)])])
+          if (covers[at(u)].empty()) next_to[at(u)].insert(root(static_cast<Index>(t)));
     }
-  overlaps = std::move(kept);
-  mesh = std::move(trial);
-  pieces = std::move(trial_pieces);
-  return true;
+    std::map<Index, int> rim_state;  // root -> 1 closed rim, 0 open
+    for (Sz t = 0; t < nt; ++t)
+      if (!covers[t].empty()) rim_state.emplace(root(static_cast<Index>(t)), 1);
+    std::map<Index, bool> has_rim;
+    for (Sz k = 0; k < cut.origin.size(); ++k) {
+      const Index t = cut.origin[k];
+      std::set<Index> groups = next_to[at(t)];
+      if (!covers[at(t)].empty()) groups.insert(root(t));
+      for (Index r : groups) {
+        has_rim[r] = true;
+        if (!trial.in_closed_piece[k]) rim_state[r] = 0;
+      }
+    }
+    bool all_closed = true;
+    for (const auto& [r, closed] : rim_state)
+      if (!closed || !has_rim[r]) {
+        refused.insert(r);
+        all_closed = false;
+      }
+    if (!all_closed) continue;
+    if (rim_state.empty()) return false;
+    // Accepted: the overlaps are found again on the cut mesh (what is left of the contacts' faces
+    // meets nothing; other overlaps are renumbered).
+    std::vector<Overlap> again;
+    if (check_no_crossing(cut.mesh, exact_points(cut.mesh), &again, &tolerance)) return false;
+    out.removed_of_facet.resize(at(mesh.num_facets), 0.0);
+    for (Sz f = 0; f < cut.removed_of_facet.size(); ++f) out.removed_of_facet[f] += cut.removed_of_facet[f];
+    out.triangles_cut += cut.triangles_cut;
+    for (const Overlap& o : candidates)
+      if (!refused.count(root(o.i))) out.pairs.insert(std::minmax(mesh.facet_of_triangle[at(o.i)], mesh.facet_of_triangle[at(o.j)]));
+    mesh = std::move(cut.mesh);
+    overlaps = std::move(again);
+    pieces = std::move(trial);
+    return true;
+  }
 }
 
 }  // namespace panelrad::geometry::validation_detail

@@ -10,7 +10,22 @@
 
 namespace panelrad::geometry::validation_detail {
 
-/// What remove_shared_contact_faces and remove_contacts removed.
+/// The projections of triangles t and u along the dominant axis of t's normal overlap by more
+/// than `tol` (separating axes in double precision): faces meeting along an edge within the
+/// rounding of their corners only touch.
+bool projections_overlap(const TriangleMesh& mesh, const Tri& t, const Tri& u, double tol);
+
+/// The largest tolerance of any pair of faces of a scene of size `size` (written_rounding.cpp).
+double largest_tolerance(const ContactTolerance& tolerance, double size);
+
+/// Joins the corners closer than `tolerance` in every coordinate into one (the lowest-numbered of
+/// each class keeps its coordinates) and drops the triangles that this leaves with two equal or
+/// three collinear corners, and the corners no triangle uses (close_corners.cpp). Returns the
+/// number of corners joined into others (0: the mesh is unchanged). `origin`, when given, holds a
+/// value per triangle and is kept for the triangles kept.
+Sz join_close_corners(TriangleMesh& mesh, double tolerance, std::vector<Index>* origin = nullptr);
+
+/// What merge_contacts_into_closed_pieces and remove_contacts removed.
 struct ContactReport {
   struct Touch {
     Index face_a = 0, face_b = 0;         ///< two input faces in contact (face_a < face_b)
@@ -20,26 +35,30 @@ struct ContactReport {
   std::vector<double> removed_of_facet;     ///< per input face, the area removed
   Sz triangles_cut = 0;  ///< input triangles cut or removed
   Sz across_gap = 0;     ///< pairs of triangles facing each other across a gap below the resolution
+  std::set<std::pair<Index, Index>> two_sided;  ///< input faces back to back in one plane, both open: a two-sided sheet
   double area_removed() const;
   std::vector<Touch> touching() const;  ///< per pair of input faces in contact
 };
 
-/// Faces in contact given over shared vertices: two triangles over the same three vertices (two
-/// solids whose touching faces were merged by the reader, wound either way). Their edges join
-/// four triangles, so no piece would close; without them the two solids' sides join across those
-/// edges into one closed surface. They are removed, and `pieces` oriented on what is left, when
-/// every triangle next to a removed one is then in a closed piece (the contact is inside matter);
-/// otherwise the mesh is left as it is and false returned (orient_scene_pieces and remove_contacts
-/// decide as for any overlap). `overlaps` is renumbered to the remaining triangles.
-bool remove_shared_contact_faces(TriangleMesh& mesh, std::vector<Overlap>& overlaps, ScenePieces& pieces,
-                                 ContactReport& out);
+/// Solids in contact whose faces as written make no closed piece: two solids sharing the
+/// corners of their touching faces (stacked boxes, a box on a floor tile), which the readers join
+/// by vertex index, so that the touching edges are shared by four triangles and neither solid
+/// closes, whatever the diagonals of the touching faces. Overlaps in one plane of opposite
+/// windings between open pieces are cut out of both faces (their common part, exactly); each such
+/// contact is kept when what is left next to it is in closed pieces (the solids joined into one
+/// closed surface around the contact, which lay inside matter), and left as it was otherwise (two
+/// sheets back to back, a polygon given twice). On success `pieces` is oriented on the cut mesh
+/// and `overlaps` found again on it; false when nothing was cut.
+bool merge_contacts_into_closed_pieces(TriangleMesh& mesh, std::vector<Overlap>& overlaps, ScenePieces& pieces,
+                                       const ContactTolerance& tolerance, ContactReport& out);
 
 /// `overlaps`: pairs of triangles that overlap with positive area in one plane (check_no_crossing),
 /// or across a gap below `resolution` (faces_across_a_gap).
 /// `in_closed_piece`: per triangle, whether its piece is closed (bounds matter). Needs the front
 /// sides of orient_scene_pieces (triangles clockwise seen from the front). Refuses overlaps with
-/// the same front side, and back-to-back overlaps of two open pieces (two one-sided sheets, neither
-/// bounding matter, would both stay in one place) (rule "crossing"); otherwise cuts each triangle along the outlines of the
+/// the same front side (rule "crossing"), and an open piece's face that would be removed whole
+/// (its front looking into a solid: a window written on a wall); keeps back-to-back overlaps of
+/// two open pieces (a two-sided sheet: each is seen from its own front side); otherwise cuts each triangle along the outlines of the
 /// triangles of closed pieces that cover it and removes the covered part, keeping facet ids and
 /// front sides, and drops the vertices no triangle uses any more.
 std::optional<Failure> remove_contacts(TriangleMesh& mesh, const std::vector<Overlap>& overlaps,
@@ -47,13 +66,15 @@ std::optional<Failure> remove_contacts(TriangleMesh& mesh, const std::vector<Ove
                                        ContactReport& out);
 
 /// Pairs of triangles of different input faces, each strictly on one side of the other's plane
-/// and every corner within `resolution` of it, whose projections overlap with positive area, not
+/// and every corner within the pair's tolerance of it (`tolerance`: the visibility's resolution, or the rounding
+/// of the pair's coordinates as written when larger), whose projections overlap with positive area, not
 /// back to back: faces across a gap the visibility cannot resolve (occluders.hpp:
 /// visibility_margin), which remove_contacts treats as in contact (facing each other) or as the
 /// same surface twice (facing the same way). Exact side tests; distances in double precision.
-std::vector<Overlap> faces_across_a_gap(const TriangleMesh& mesh, double resolution);
+std::vector<Overlap> faces_across_a_gap(const TriangleMesh& mesh, const ContactTolerance& tolerance);
 
-/// Closes the gaps of the pairs of faces_across_a_gap that face each other: the corners of the
+/// Closes the gaps of the pairs of faces_across_a_gap that face each other, and of the overlaps
+/// within the rounding of the numbers as written (check_no_crossing): the corners of the
 /// second triangle are moved onto the plane of the first (by less than the resolution; exactly
 /// onto it for a plane normal to an axis), so that no slit narrower than the visibility resolves
 /// is left between two solids in contact. Pairs facing the same way are left (refused later).

@@ -23,6 +23,7 @@
 // contact are resolved once their front sides are known (contact_removal.cpp).
 // The crossing point reported is that midpoint, or for a coplanar overlap the mean of the vertices
 // of the (convex, positive-area) intersection polygon, an interior point of it.
+#include "contact_removal.hpp"
 #include "validation_internal.hpp"
 
 #include <CGAL/Bbox_3.h>
@@ -31,6 +32,8 @@
 #include <CGAL/intersections.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <utility>
 #include <vector>
 
@@ -146,10 +149,62 @@ std::string point_text(const Vec3& x) {
   return s;
 }
 
+/// The distances of u's corners from the plane of t (double precision, plane_distance).
+std::array<double, 3> corner_distances(const TriangleMesh& mesh, const Tri& t, const Tri& u) {
+  const Vec3 &a = mesh.vertices[at(t[0])], &b = mesh.vertices[at(t[1])], &c = mesh.vertices[at(t[2])];
+  return {plane_distance(a, b, c, mesh.vertices[at(u[0])]), plane_distance(a, b, c, mesh.vertices[at(u[1])]),
+          plane_distance(a, b, c, mesh.vertices[at(u[2])])};
+}
+
+/// How deep u passes through the plane of t: the lesser of its corners' largest distances on
+/// either side.
+double depth_through(const std::array<double, 3>& d) {
+  double pos = 0, neg = 0;
+  for (double x : d) {
+    pos = std::max(pos, x);
+    neg = std::max(neg, -x);
+  }
+  return std::min(pos, neg);
+}
+
+/// Every corner of each of t and u within the tolerance of their faces f, g of the other's plane.
+bool within_of(const TriangleMesh& mesh, const Tri& t, const Tri& u, double tol) {
+  for (const auto& d : {corner_distances(mesh, t, u), corner_distances(mesh, u, t)})
+    for (double x : d)
+      if (!(std::abs(x) <= tol)) return false;
+  return true;
+}
+
+/// All corners of u strictly on one side of the plane of t (exact): apart, not touching it.
+bool strictly_one_side(const std::vector<Point>& p, const Tri& t, const Tri& u) {
+  bool pos = false, neg = false, on = false;
+  for (Index v : u) {
+    const CGAL::Orientation o = CGAL::orientation(p[at(t[0])], p[at(t[1])], p[at(t[2])], p[at(v)]);
+    pos = pos || o == CGAL::POSITIVE;
+    neg = neg || o == CGAL::NEGATIVE;
+    on = on || o == CGAL::COPLANAR;
+  }
+  return pos != neg && !on;
+}
+
+Vec3 centroid_of(const TriangleMesh& mesh, const Tri& t) {
+  return (mesh.vertices[at(t[0])] + mesh.vertices[at(t[1])] + mesh.vertices[at(t[2])]) / 3.0;
+}
+
+/// The ContactTolerance of faces f and g (of triangles t and u) for the size of the two triangles.
+double pair_tolerance(const TriangleMesh& mesh, const Tri& t, const Tri& u, const ContactTolerance& tolerance, Index f,
+                      Index g) {
+  double size = 0;
+  for (const Tri* x : {&t, &u})
+    for (int s = 0; s < 3; ++s)
+      size = std::max(size, (mesh.vertices[at((*x)[at(s)])] - mesh.vertices[at((*x)[at((s + 1) % 3)])]).norm());
+  return tolerance.of(f, g, size);
+}
+
 }  // namespace
 
 std::optional<Failure> check_no_crossing(const TriangleMesh& mesh, const std::vector<Point>& pts,
-                                         std::vector<Overlap>* overlaps) {
+                                         std::vector<Overlap>* overlaps, const ContactTolerance* tolerance) {
   const Sz nt = mesh.triangles.size();
   std::vector<Box> boxes;
   boxes.reserve(nt);
@@ -169,15 +224,43 @@ std::optional<Failure> check_no_crossing(const TriangleMesh& mesh, const std::ve
   for (const auto& [i, j] : candidates) {
     bool coplanar = false;
     const std::optional<Vec3> x = crossing_point(mesh, pts, i, j, coplanar);
-    if (!x) continue;
-    const Describe d{mesh};
     const Index fi = mesh.facet_of_triangle[at(i)], fj = mesh.facet_of_triangle[at(j)];
+    if (!x) {
+      // Not crossing, but one touching or passing through the other's plane within the rounding
+      // of the numbers as written, or folded onto it across a shared edge (strictly apart both
+      // ways is a gap: faces_across_a_gap).
+      if (tolerance && overlaps && fi != fj) {
+        const Tri &ti = mesh.triangles[at(i)], &tj = mesh.triangles[at(j)];
+        if (straddles(pts, ti, tj) != 0 && !(strictly_one_side(pts, ti, tj) && strictly_one_side(pts, tj, ti)) &&
+            within_of(mesh, ti, tj, pair_tolerance(mesh, ti, tj, *tolerance, fi, fj)) &&
+            projections_overlap(mesh, ti, tj, pair_tolerance(mesh, ti, tj, *tolerance, fi, fj)))
+          overlaps->push_back({i, j, centroid_of(mesh, ti), false, true});
+      }
+      continue;
+    }
+    const Describe d{mesh};
     if (coplanar && overlaps && fi != fj) {  // faces in contact, or given twice: remove_contacts decides
       overlaps->push_back({i, j, *x});
       continue;
     }
+    std::string beyond;
+    if (!coplanar && tolerance && fi != fj) {
+      // Within the rounding of the numbers as written: two faces in one plane (an overlap of
+      // faces in contact), or touching (a side standing on a floor, through it by an ulp).
+      const Tri &ti = mesh.triangles[at(i)], &tj = mesh.triangles[at(j)];
+      const double tol = pair_tolerance(mesh, ti, tj, *tolerance, fi, fj);
+      const std::array<double, 3> dij = corner_distances(mesh, ti, tj), dji = corner_distances(mesh, tj, ti);
+      if (within_of(mesh, ti, tj, tol)) {
+        if (overlaps && projections_overlap(mesh, ti, tj, tol)) overlaps->push_back({i, j, *x, false, true});
+        continue;
+      }
+      const double depth = std::min(depth_through(dij), depth_through(dji));
+      if (depth <= tol) continue;
+      beyond = ", by " + sci(depth) + ", more than the rounding of their coordinates as written allows (" +
+               sci(tol) + ")";
+    }
     const std::string faces = fi == fj ? d.face(fi) + " crosses itself" : d.faces(fi, fj) + " cross";
-    return Failure{"crossing", faces + " at " + point_text(*x) + ": " + d.triangle(i) + " and " + d.triangle(j) +
+    return Failure{"crossing", faces + " at " + point_text(*x) + beyond + ": " + d.triangle(i) + " and " + d.triangle(j) +
                                    " have interior points in common, so neither lies on one side of the other and "
                                    "their front sides (what emits, reflects and is seen) are not defined there; "
                                    "split the faces along their intersection, or move one so that they only touch"};

@@ -1,8 +1,9 @@
 // Rule "orientable" of validate_scene (scene_validation.hpp) and the front side of every face.
 //
 // Pieces: connected components of triangles joined across edges that exactly two triangles share
-// (by vertex index; the readers merge coincident vertices). An edge of one triangle (a boundary)
-// or of three or more (non-manifold) joins nothing. A piece is closed when every edge of its
+// (by vertex index; the readers merge coincident vertices) without being folded flat onto each
+// other. An edge of one triangle (a boundary), of three or more (non-manifold), or of two that
+// overlap (a polygon given twice, wound either way) joins nothing. A piece is closed when every edge of its
 // triangles joins two of them.
 //
 // Within a piece the orientation propagates across joined edges (a neighbour runs the shared edge
@@ -14,9 +15,10 @@
 // - open piece: the side from which its triangles run counter-clockwise (the OBJ/OFF convention);
 // - closed piece inside no other closed piece: an enclosure, front inward;
 // - closed piece inside another: an object, front outward.
-// Nesting is decided with CGAL::Side_of_triangle_mesh (exact predicates, ray parity) on the first
-// vertex of the inner piece not on the outer piece's surface (faces may touch), else the centroid
-// of one of its triangles. Which side of a closed piece is inside is the sign of its enclosed
+// Nesting is decided with CGAL::Side_of_triangle_mesh (exact predicates, ray parity) by the
+// majority of points of the inner piece off the outer piece's surface, taken just inside the inner
+// piece's solid (faces may touch, and faces written within the rounding of a contact may lie an
+// ulp on the wrong side of it: lies_inside). Which side of a closed piece is inside is the sign of its enclosed
 // volume (volume_sign, exact).
 // Storage: every triangle clockwise seen from its front, its geometric normal (b - a) x (c - a)
 // pointing to the back (the convention of validate_closed_convex, counter-clockwise from outside).
@@ -28,6 +30,7 @@
 #include <CGAL/Surface_mesh.h>
 
 #include <algorithm>
+#include <cmath>
 #include <deque>
 #include <memory>
 #include <utility>
@@ -125,27 +128,79 @@ CGAL::Bbox_3 mesh_box(const TriangleMesh& m) {
   return box;
 }
 
+/// The inner box lies inside the outer one, up to 1e-5 of the outer one's diagonal (corners of a
+/// contact written rounded may poke out of it by their rounding).
 bool box_inside(const CGAL::Bbox_3& inner, const CGAL::Bbox_3& outer) {
+  double diagonal = 0;
+  for (int k = 0; k < 3; ++k) diagonal += (outer.max(k) - outer.min(k)) * (outer.max(k) - outer.min(k));
+  const double slack = 1e-5 * std::sqrt(diagonal);
   for (int k = 0; k < 3; ++k)
-    if (inner.min(k) < outer.min(k) || inner.max(k) > outer.max(k)) return false;
+    if (inner.min(k) < outer.min(k) - slack || inner.max(k) > outer.max(k) + slack) return false;
   return true;
 }
 
 /// Whether `inner` (a piece, touching allowed) lies inside the closed surface `outer`: decided by
-/// its first vertex, else triangle centroid, off that surface; nothing when it lies wholly on it
-/// (a sheet on a wall: neither inside nor outside).
-std::optional<bool> lies_inside(const TriangleMesh& inner, const ClosedSurface& outer) {
+/// the majority of sample points off that surface, one per triangle (up to kNestingSamples
+/// triangles, evenly spread), then the vertices. A closed inner piece's points are its triangles'
+/// centroids moved into its own solid by 1e-4 of the triangle's size: the pieces do not cross, so
+/// those points lie on the inner piece's side of the outer surface, also where its faces lie on
+/// that surface within the rounding of their corners as written (a box's bottom an ulp below the
+/// floor it stands on, its sides on the walls of the room's corner it stands in). An open piece's
+/// points are its centroids. Nothing when all lie on the surface (a sheet on a wall: neither
+/// inside nor outside).
+constexpr Sz kNestingSamples = 64;
+
+std::optional<bool> lies_inside(const TriangleMesh& inner, bool inner_closed, const ClosedSurface& outer) {
   const SideOfMesh& side = *outer.side;
-  for (const Vec3& v : inner.vertices) {
-    const CGAL::Bounded_side s = side(Point(v.x(), v.y(), v.z()));
-    if (s != CGAL::ON_BOUNDARY) return s == CGAL::ON_BOUNDED_SIDE;
+  Sz in = 0, out = 0;
+  const auto vote = [&](const Vec3& x) {
+    const CGAL::Bounded_side s = side(Point(x.x(), x.y(), x.z()));
+    in += s == CGAL::ON_BOUNDED_SIDE;
+    out += s == CGAL::ON_UNBOUNDED_SIDE;
+  };
+  // Into the solid: against the geometric normal when the piece runs counter-clockwise from outside.
+  const double into = !inner_closed ? 0.0 : volume_sign(inner, inner.vertices[0]) > 0 ? -1.0 : 1.0;
+  const Sz nt = inner.triangles.size();
+  for (Sz k = 0; k < nt; k += std::max<Sz>(1, nt / kNestingSamples)) {
+    const Tri& t = inner.triangles[k];
+    const Vec3 &a = inner.vertices[at(t[0])], &b = inner.vertices[at(t[1])], &c = inner.vertices[at(t[2])];
+    const Vec3 n = (b - a).cross(c - a);
+    const double size = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    const Vec3 offset = n.norm() > 0 ? Vec3(into * 1e-4 * size * n.normalized()) : Vec3::Zero();
+    vote((a + b + c) / 3.0 + offset);
   }
-  for (const Tri& t : inner.triangles) {
-    const Vec3 c = (inner.vertices[at(t[0])] + inner.vertices[at(t[1])] + inner.vertices[at(t[2])]) / 3.0;
-    const CGAL::Bounded_side s = side(Point(c.x(), c.y(), c.z()));
-    if (s != CGAL::ON_BOUNDARY) return s == CGAL::ON_BOUNDED_SIDE;
-  }
+  if (in != out) return in > out;
+  const Sz nv = inner.vertices.size();
+  for (Sz k = 0; k < nv; k += std::max<Sz>(1, nv / kNestingSamples)) vote(inner.vertices[k]);
+  if (in != out) return in > out;
   return std::nullopt;
+}
+
+/// Two triangles folded flat onto each other across their common edge (a, b): their third
+/// corners lie in one plane with it and on the same side of its line (exact). They overlap, so
+/// they do not bound a region of space between them: the edge joins neither to the other (a
+/// surface given twice with opposite windings, a two-sided sheet, is two open pieces, not a
+/// closed piece of zero volume).
+bool folded(const std::vector<Point>& p, Index a, Index b, Index c, Index d) {
+  return CGAL::orientation(p[at(a)], p[at(b)], p[at(c)], p[at(d)]) == CGAL::COPLANAR &&
+         CGAL::coplanar_orientation(p[at(a)], p[at(b)], p[at(c)], p[at(d)]) == CGAL::POSITIVE;
+}
+
+/// Removes the joins of build_adjacency across edges where two triangles are folded flat.
+void unjoin_folded_edges(const TriangleMesh& mesh, Adjacency& adj) {
+  const std::vector<Point> p = exact_points(mesh);
+  for (Sz t = 0; t < mesh.triangles.size(); ++t)
+    for (int s = 0; s < 3; ++s) {
+      const Index n = adj.neighbour[3 * t + at(s)];
+      if (n == kNone || at(n) < t) continue;
+      const Tri& tr = mesh.triangles[t];
+      const Index a = tr[at(s)], b = tr[at((s + 1) % 3)], c = tr[at((s + 2) % 3)];
+      const int ns = slot_of(mesh.triangles[at(n)], a, b);
+      const Index d = mesh.triangles[at(n)][at((ns + 2) % 3)];
+      if (!folded(p, a, b, c, d)) continue;
+      adj.neighbour[3 * t + at(s)] = kNone;
+      adj.neighbour[3 * at(n) + at(ns)] = kNone;
+    }
 }
 
 }  // namespace
@@ -236,6 +291,7 @@ std::optional<Failure> orient_scene_pieces(TriangleMesh& mesh, ScenePieces& out)
   // non-manifold edge) is what makes a piece open here, not an error.
   Adjacency adj;
   (void)build_adjacency(mesh, adj);
+  unjoin_folded_edges(mesh, adj);
 
   // 1. Pieces, each consistently oriented relative to its first triangle.
   std::vector<signed char> flip(nt, -1);
@@ -299,7 +355,7 @@ std::optional<Failure> orient_scene_pieces(TriangleMesh& mesh, ScenePieces& out)
   // +1 inside, -1 outside, 0 on the surface (neither).
   const auto where = [&](Sz inner, Index outer) {
     if (!box_inside(mesh_box(piece_meshes[inner]), surfaces[at(outer)]->box)) return -1;
-    const std::optional<bool> in = lies_inside(piece_meshes[inner], *surfaces[at(outer)]);
+    const std::optional<bool> in = lies_inside(piece_meshes[inner], pieces[inner].closed, *surfaces[at(outer)]);
     return !in ? 0 : *in ? 1 : -1;
   };
   for (Index a : closed)

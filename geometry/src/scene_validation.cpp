@@ -13,6 +13,7 @@
 #include <panelrad/geometry/occluders.hpp>
 #include <panelrad/geometry/scene_validation.hpp>
 
+#include <set>
 #include <utility>
 
 namespace panelrad::geometry {
@@ -103,10 +104,22 @@ SceneValidationReport validate_scene(TriangleMesh& mesh) {
   if (auto f = check_well_formed(mesh)) return rejected(std::move(report), *f);
   if (auto f = check_measurable(mesh, exact_points(mesh))) return rejected(std::move(report), *f);
   const TriangleMesh input = mesh;  // unchanged when refused
+  // Corners closer than the visibility's resolution are one corner (four times the shadow tests'
+  // margin: no slit narrower than it is seen).
+  const double resolution = 4 * visibility_margin(mesh);
+  const Sz corners_joined = join_close_corners(mesh, resolution);
+  if (corners_joined > 0)
+    report.notes.push_back(std::to_string(corners_joined) + (corners_joined == 1 ? " corner lay" : " corners lay") +
+                           " closer than " +
+                           sci(resolution) + " to another (below the visibility's resolution) and joined it");
+  if (mesh.triangles.empty())
+    return rejected(std::move(report), Failure{"non-degenerate", "every triangle is thinner than the visibility's "
+                                                                 "resolution (" + sci(resolution) + ")"});
   // An edge that ends on the middle of another edge joins nothing by vertex index: the vertex is
   // inserted into that edge, so that a surface that closes geometrically is closed. A closed
   // convex surface may then appear: the convex path again.
-  report.t_junctions_split = split_t_junctions(mesh);
+  const ContactTolerance tolerance(mesh, resolution);
+  report.t_junctions_split = split_t_junctions(mesh, nullptr, largest_tolerance(tolerance, diameter(mesh)));
   if (report.t_junctions_split > 0) {
     const std::string split_note = std::to_string(report.t_junctions_split) +
                                    (report.t_junctions_split == 1 ? " vertex lay" : " vertices lay") +
@@ -120,29 +133,40 @@ SceneValidationReport validate_scene(TriangleMesh& mesh) {
       return accepted_convex(std::move(report));
     }
   }
+  // Faces facing each other closer than the visibility can resolve are in contact for it: the
+  // resolution is four times the shadow tests' margin, so that any gap beyond it is seen. Faces
+  // whose coordinates were written rounded are the contact they stand for within that rounding
+  // (ContactTolerance, written_rounding.cpp).
   std::vector<Overlap> overlaps;
-  if (auto f = check_no_crossing(mesh, exact_points(mesh), &overlaps)) {
+  if (auto f = check_no_crossing(mesh, exact_points(mesh), &overlaps, &tolerance)) {
     mesh = input;
     return rejected(std::move(report), *f);
   }
   ScenePieces pieces;
   ContactReport contacts;
-  if (!remove_shared_contact_faces(mesh, overlaps, pieces, contacts))
+  if (!merge_contacts_into_closed_pieces(mesh, overlaps, pieces, tolerance, contacts))
     if (auto f = orient_scene_pieces(mesh, pieces)) {
       mesh = input;
       return rejected(std::move(report), *f);
     }
-  // Faces facing each other closer than the visibility can resolve are in contact for it: the
-  // resolution is four times the shadow tests' margin, so that any gap beyond it is seen.
-  const double resolution = 4 * visibility_margin(mesh);
-  const std::vector<Overlap> across_gap = faces_across_a_gap(mesh, resolution);
-  close_gaps(mesh, across_gap);
-  overlaps.insert(overlaps.end(), across_gap.begin(), across_gap.end());
+  std::vector<Overlap> to_close = faces_across_a_gap(mesh, tolerance);
+  {
+    // A pair found within the rounding already (touching) is not a gap as well.
+    std::set<std::pair<Index, Index>> known;
+    for (const Overlap& o : overlaps) known.emplace(o.i, o.j);
+    std::erase_if(to_close, [&](const Overlap& o) { return known.count({o.i, o.j}) > 0; });
+  }
+  overlaps.insert(overlaps.end(), to_close.begin(), to_close.end());
+  for (const Overlap& o : overlaps)
+    if (o.within_rounding) to_close.push_back(o);
+  close_gaps(mesh, to_close);
   if (auto f = remove_contacts(mesh, overlaps, pieces.in_closed_piece, resolution, contacts)) {
     mesh = input;
     return rejected(std::move(report), *f);
   }
   if (!contacts.pairs.empty()) {
+    // The corners of the cut, rounded once, an ulp from an old corner are that corner.
+    join_close_corners(mesh, resolution);
     // What the contacts left: something to see, and new corners (rounded once) that still span
     // triangles of positive area.
     std::optional<Failure> f;
@@ -169,6 +193,17 @@ SceneValidationReport validate_scene(TriangleMesh& mesh) {
   for (const ContactReport::Touch& t : contacts.touching())
     report.contacts.push_back({t.face_a, t.face_b, t.removed_a, t.removed_b});
   note_contacts(mesh, report);
+  {
+    const Describe d{mesh};
+    Sz listed = 0;
+    for (const auto& [a, b] : contacts.two_sided)
+      if (listed++ < kMaxContactNotes)
+        report.notes.push_back(d.faces(a, b) + " lie back to back in one plane, neither part of a closed surface: a "
+                                               "two-sided sheet, each face seen from its own front side");
+    if (contacts.two_sided.size() > kMaxContactNotes)
+      report.notes.push_back("and " + std::to_string(contacts.two_sided.size() - kMaxContactNotes) +
+                             " more pairs of faces back to back (two-sided sheets)");
+  }
   if (contacts.across_gap > 0)
     report.notes.push_back(std::to_string(contacts.across_gap) +
                            " pairs of triangles face each other across a gap below the visibility's resolution (" +

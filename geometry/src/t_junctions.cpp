@@ -111,7 +111,7 @@ std::vector<EdgeBox> covering_boxes(const TriangleMesh& mesh, const std::vector<
 
 /// One round: finds the vertices strictly inside the boundary edges and splits each triangle along
 /// the first of its edges that has some. Returns the number of vertices inserted.
-Sz split_round(TriangleMesh& mesh, const std::vector<Point>& p) {
+Sz split_round(TriangleMesh& mesh, const std::vector<Point>& p, std::vector<Index>* origin, double tolerance) {
   double median = 0;
   std::vector<Slot> slots = boundary_slots(mesh, median);
   // A triangle with collinear corners is left alone: its pieces would be degenerate.
@@ -129,7 +129,9 @@ Sz split_round(TriangleMesh& mesh, const std::vector<Point>& p) {
   for (Sz v = 0; v < mesh.vertices.size(); ++v)
     if (used[v]) {
       const Vec3& x = mesh.vertices[v];
-      vertex_boxes.emplace_back(CGAL::Bbox_3(x.x(), x.y(), x.z(), x.x(), x.y(), x.z()), static_cast<std::uint32_t>(v));
+      vertex_boxes.emplace_back(CGAL::Bbox_3(x.x() - tolerance, x.y() - tolerance, x.z() - tolerance, x.x() + tolerance,
+                                             x.y() + tolerance, x.z() + tolerance),
+                                static_cast<std::uint32_t>(v));
     }
   std::vector<std::pair<std::uint32_t, Index>> candidates;  // (slot, vertex)
   CGAL::box_intersection_d(edge_boxes.begin(), edge_boxes.end(), vertex_boxes.begin(), vertex_boxes.end(),
@@ -152,8 +154,14 @@ Sz split_round(TriangleMesh& mesh, const std::vector<Point>& p) {
     const Index ia = corner(tr, slots[i].s), ib = corner(tr, slots[i].s + 1);
     if (v == ia || v == ib) continue;
     const Point &a = p[at(ia)], &b = p[at(ib)], &x = p[at(v)];
-    if (!CGAL::collinear(a, x, b) || !CGAL::collinear_are_strictly_ordered_along_line(a, x, b)) continue;
     const Vec3 d = mesh.vertices[at(ib)] - mesh.vertices[at(ia)];
+    if (!CGAL::collinear(a, x, b) || !CGAL::collinear_are_strictly_ordered_along_line(a, x, b)) {
+      // Within `tolerance` of the open segment, further than it from both ends.
+      if (!(tolerance > 0)) continue;
+      const Vec3 ax = mesh.vertices[at(v)] - mesh.vertices[at(ia)];
+      const double length = d.norm(), along = ax.dot(d) / length;
+      if (!(along > tolerance && along < length - tolerance) || !((ax - along / length * d).norm() <= tolerance)) continue;
+    }
     int axis = 0;
     d.cwiseAbs().maxCoeff(&axis);
     const double coord = mesh.vertices[at(v)][axis];
@@ -187,7 +195,7 @@ Sz split_round(TriangleMesh& mesh, const std::vector<Point>& p) {
 
   Sz inserted = 0;
   std::vector<Tri> triangles;
-  std::vector<Index> facets;
+  std::vector<Index> facets, from_triangle;
   triangles.reserve(mesh.triangles.size() + hits.size());
   facets.reserve(triangles.capacity());
   for (Sz t = 0; t < mesh.triangles.size(); ++t) {
@@ -195,6 +203,7 @@ Sz split_round(TriangleMesh& mesh, const std::vector<Point>& p) {
     if (first_hit[t] == kNoSplit) {
       triangles.push_back(tr);
       facets.push_back(mesh.facet_of_triangle[t]);
+      if (origin) from_triangle.push_back((*origin)[t]);
       continue;
     }
     // (a, b, c) with v_1, ..., v_k on (a, b): the fan (a, v_1, c), ..., (v_k, b, c) around c.
@@ -204,12 +213,15 @@ Sz split_round(TriangleMesh& mesh, const std::vector<Point>& p) {
     for (Sz h = first_hit[t]; h < hit_end[t]; ++h) {
       triangles.push_back({from, hits[h].v, c});
       facets.push_back(mesh.facet_of_triangle[t]);
+      if (origin) from_triangle.push_back((*origin)[t]);
       from = hits[h].v;
       ++inserted;
     }
     triangles.push_back({from, corner(tr, s + 1), c});
     facets.push_back(mesh.facet_of_triangle[t]);
+    if (origin) from_triangle.push_back((*origin)[t]);
   }
+  if (origin) *origin = std::move(from_triangle);
   mesh.triangles = std::move(triangles);
   mesh.facet_of_triangle = std::move(facets);
   return inserted;
@@ -217,10 +229,11 @@ Sz split_round(TriangleMesh& mesh, const std::vector<Point>& p) {
 
 }  // namespace
 
-std::size_t split_t_junctions(TriangleMesh& mesh) {
+std::size_t split_t_junctions(TriangleMesh& mesh, std::vector<Index>* origin, double tolerance) {
   const std::vector<Point> p = exact_points(mesh);
   Sz inserted = 0;
-  for (Sz round = split_round(mesh, p); round > 0; round = split_round(mesh, p)) inserted += round;
+  for (Sz round = split_round(mesh, p, origin, tolerance); round > 0; round = split_round(mesh, p, origin, tolerance))
+    inserted += round;
   return inserted;
 }
 

@@ -8,6 +8,7 @@
 #include <panelrad/geometry/mesh.hpp>
 
 #include <cstddef>
+#include <vector>
 
 namespace panelrad::geometry::validation_detail {
 
@@ -25,6 +26,10 @@ namespace panelrad::geometry::validation_detail {
 /// CGAL::box_intersection_d between the vertices and boxes covering each boundary edge in pieces of
 /// about the median edge length. At most three rounds change the mesh (a triangle is split along
 /// one edge per round, and the edges a split creates have no vertex inside).
-std::size_t split_t_junctions(TriangleMesh& mesh);
+/// `origin`, when given, holds a value per triangle and is carried to the triangles it is split
+/// into. `tolerance` > 0: a vertex within that distance of the open segment, and further than it
+/// from both ends, lies inside it too (corners written rounded: a corner of one solid on the edge
+/// of another, an ulp off its line).
+std::size_t split_t_junctions(TriangleMesh& mesh, std::vector<Index>* origin = nullptr, double tolerance = 0);
 
 }  // namespace panelrad::geometry::validation_detail

@@ -175,11 +175,37 @@ struct Overlap {
   Index i = kNone, j = kNone;  ///< the triangles, i < j
   Vec3 point;                  ///< a point interior to both
   bool across_gap = false;     ///< not coplanar: across a gap below the visibility's resolution
+  bool within_rounding = false;  ///< not coplanar: each within the pair's ContactTolerance of the other's plane
+};
+
+// --- the rounding of coordinates as written (written_rounding.cpp) -------------------------------
+
+/// How far a coordinate read from a file may lie from the value meant: half a unit in the last
+/// place of its shortest decimal when that has 6 or more significant digits (at least an ulp),
+/// else 0 (a short decimal is meant exactly).
+double written_rounding(double x);
+/// Per input face, the largest written_rounding of its corners' coordinates; all 0 for a mesh
+/// built in code (no facet_line).
+std::vector<double> facet_rounding(const TriangleMesh& mesh);
+
+/// The distance within which two faces are the contact they stand for: a gap or a crossing no
+/// deeper, or two planes no further apart, is closed (written_rounding.cpp states the policy).
+struct ContactTolerance {
+  double resolution = 0;         ///< the visibility's resolution, the least tolerance
+  std::vector<double> rounding;  ///< facet_rounding
+  ContactTolerance() = default;
+  ContactTolerance(const TriangleMesh& mesh, double resolution);
+  /// For input faces f and g whose triangles span `pair_size`.
+  double of(Index f, Index g, double pair_size) const;
 };
 /// With `overlaps`, a coplanar overlap of positive area between triangles of two input faces is
 /// listed there instead of refused (faces in contact, contact_removal.hpp).
+/// With `tolerance` too, two triangles of different faces that cross no deeper than the pair's
+/// tolerance touch (the rounding of their corners as written), and two that straddle each other's
+/// planes within it and overlap in projection are listed as an overlap within_rounding.
 std::optional<Failure> check_no_crossing(const TriangleMesh& mesh, const std::vector<Point>& pts,
-                                         std::vector<Overlap>* overlaps = nullptr);
+                                         std::vector<Overlap>* overlaps = nullptr,
+                                         const ContactTolerance* tolerance = nullptr);
 
 /// Which side of a piece is its front (the side that emits, reflects and sees: the paper's inner
 /// normal n), in the words every report uses, on the convex path and the general one alike.

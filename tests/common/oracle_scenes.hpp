@@ -462,11 +462,11 @@ inline TriangleMesh cube_under_lamp(const Frame& frame, BoxFront cube_front) {
 inline constexpr double kLampLo = -0.5, kLampHi = 1.5, kLampHeight = 2.0, kCubeTop = 1.0;
 
 /// The measured Cornell box (examples/scenes/cornell_box.obj, millimetres, y up) read with the OBJ
-/// reader, its two blocks closed by bottom faces (wound as the blocks, outward) and raised by
-/// `lift` (0: standing on the floor, the bottoms on the floor's plane), placed in `frame`.
+/// reader, its two closed blocks (faces 12-23: tops, sides and bottoms) raised by `lift` (0:
+/// standing on the floor, the bottoms on the floor's plane), placed in `frame`.
 inline constexpr double kCornellLightX0 = 213, kCornellLightX1 = 343, kCornellLightZ0 = 227, kCornellLightZ1 = 332;
 inline constexpr double kCornellCeiling = 548.8, kCornellTallTop = 330;
-inline constexpr Index kCornellFirstBlockFacet = 12, kCornellLastBlockFacet = 21;
+inline constexpr Index kCornellFirstBlockFacet = 12, kCornellLastBlockFacet = 23;
 
 inline TriangleMesh cornell_box_with_closed_blocks(const Frame& frame, double lift) {
   TriangleMesh m = geometry::read_mesh(std::string(PANELRAD_SOURCE_DIR) + "/examples/scenes/cornell_box.obj");
@@ -476,14 +476,6 @@ inline TriangleMesh cornell_box_with_closed_blocks(const Frame& frame, double li
       for (Index v : m.triangles[t]) block_vertex[static_cast<std::size_t>(v)] = true;
   for (std::size_t v = 0; v < m.vertices.size(); ++v)
     if (block_vertex[v]) m.vertices[v].y() += lift;
-  // The blocks' bottom corners (published data), in the order of their tops.
-  const double short_bottom[4][2] = {{130, 65}, {82, 225}, {240, 272}, {290, 114}};
-  const double tall_bottom[4][2] = {{423, 247}, {265, 296}, {314, 456}, {472, 406}};
-  for (const auto* bottom : {short_bottom, tall_bottom}) {
-    std::vector<Vec3> corners;
-    for (int i = 0; i < 4; ++i) corners.emplace_back(bottom[i][0], lift, bottom[i][1]);
-    add_polygon_facing(m, corners, Vec3(0, -1, 0));
-  }
   for (Vec3& v : m.vertices) v = frame.place(v);
   char s[64];
   std::snprintf(s, sizeof s, ", blocks closed and raised by %g mm, ", lift);
