@@ -429,18 +429,12 @@ std::vector<ContactReport::Touch> ContactReport::touching() const {
 bool merge_contacts_into_closed_pieces(TriangleMesh& mesh, std::vector<Overlap>& overlaps, ScenePieces& pieces,
                                        const ContactTolerance& tolerance, ContactReport& out) {
   const Sz nt = mesh.triangles.size();
-  // Candidates: overlaps in one plane (or within the rounding) of opposite windings as written,
-  // between open pieces as the faces are written.
+  // Candidates: overlaps in one plane (or within the rounding) between open pieces as the faces
+  // are written, wound either way (a solid wound against the other: its pieces are oriented once
+  // joined).
   std::vector<Overlap> candidates;
-  for (const Overlap& o : overlaps) {
-    if (o.across_gap) continue;
-    const Tri &ti = mesh.triangles[at(o.i)], &tj = mesh.triangles[at(o.j)];
-    int axis = 0;
-    ((mesh.vertices[at(ti[1])] - mesh.vertices[at(ti[0])]).cross(mesh.vertices[at(ti[2])] - mesh.vertices[at(ti[0])]))
-        .cwiseAbs()
-        .maxCoeff(&axis);
-    if (projected_orientation(mesh, ti, axis) != projected_orientation(mesh, tj, axis)) candidates.push_back(o);
-  }
+  for (const Overlap& o : overlaps)
+    if (!o.across_gap) candidates.push_back(o);
   if (candidates.empty()) return false;
   ScenePieces written;
   {

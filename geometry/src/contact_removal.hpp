@@ -43,8 +43,8 @@ struct ContactReport {
 /// Solids in contact whose faces as written make no closed piece: two solids sharing the
 /// corners of their touching faces (stacked boxes, a box on a floor tile), which the readers join
 /// by vertex index, so that the touching edges are shared by four triangles and neither solid
-/// closes, whatever the diagonals of the touching faces. Overlaps in one plane of opposite
-/// windings between open pieces are cut out of both faces (their common part, exactly); each such
+/// closes, whatever the diagonals of the touching faces. Overlaps in one plane (or within the
+/// rounding) between open pieces are cut out of both faces (their common part, exactly); each such
 /// contact is kept when what is left next to it is in closed pieces (the solids joined into one
 /// closed surface around the contact, which lay inside matter), and left as it was otherwise (two
 /// sheets back to back, a polygon given twice). On success `pieces` is oriented on the cut mesh
