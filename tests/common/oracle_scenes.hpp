@@ -126,10 +126,12 @@ inline BoxFront flipped(BoxFront f) { return f == BoxFront::inside ? BoxFront::o
 inline const char* to_string(BoxFront f) { return f == BoxFront::inside ? "wound inward" : "wound outward"; }
 
 /// Appends the planar polygon `corners` as one facet (add_polygon), its order reversed when needed
-/// so that it runs counter-clockwise seen from the side `front` points to (Newell normal).
+/// so that it runs counter-clockwise seen from the side `front` points to (Newell normal, from the
+/// corners relative to the first: absolute coordinates 1e8 away would cancel to noise).
 inline Index add_polygon_facing(TriangleMesh& mesh, std::vector<Vec3> corners, const Vec3& front) {
   Vec3 normal = Vec3::Zero();
-  for (std::size_t i = 0; i < corners.size(); ++i) normal += corners[i].cross(corners[(i + 1) % corners.size()]);
+  for (std::size_t i = 0; i < corners.size(); ++i)
+    normal += (corners[i] - corners[0]).cross(corners[(i + 1) % corners.size()] - corners[0]);
   if (normal.dot(front) < 0) std::reverse(corners.begin() + 1, corners.end());
   return add_polygon(mesh, corners);
 }
