@@ -13,13 +13,30 @@
 //
 // Front sides (the side that emits, reflects and sees: the paper's inner normal n):
 // - open piece: the side from which its triangles run counter-clockwise (the OBJ/OFF convention);
-// - closed piece inside no other closed piece: an enclosure, front inward;
-// - closed piece inside another: an object, front outward.
+// - closed piece: its winding in the file (the side most of its area runs counter-clockwise from)
+//   is the user's statement, overridden only where physics forbids it. The closed pieces nest in a
+//   forest (each inside its innermost container). A closed piece directly in the air of an
+//   enclosure or a cavity is an object (front outward); one directly in an object's solid is a
+//   cavity (front inward). So a tree has two readings, from its root: as a room (root an
+//   enclosure, then objects and cavities alternating) or as a solid (root an object, then cavities
+//   and objects alternating). Kept: the reading with fewer pieces against the file's winding; on a
+//   tie, the room (the outermost piece is the room: a room with one body, both wound outward as
+//   exporters write them, is a room with a body).
+// - open pieces overrule the counts where they lie in air that only one reading has: a sheet
+//   inside closed pieces lives in the air inside the innermost one (an enclosure or a cavity), a
+//   sheet inside none in the air around every top-level closed piece it lies outside of (each an
+//   object: a closed cube under a lamp, whatever its winding). When sheets ask for both readings of
+//   one tree (air on both sides of a closed surface) the counts decide. Closed pieces side by side
+//   do not constrain each other: two rooms wound inward are two enclosures.
+// - a closed piece alone in the scene (every other piece, if any, lying on its surface) is an
+//   enclosure, whatever its winding.
+// Each closed piece's note says what it is, whether as the file winds it or against it, and the
+// rule that decided (for a piece against the file, the physical rule that forced it).
 // Nesting is decided with CGAL::Side_of_triangle_mesh (exact predicates, ray parity) by the
 // majority of points of the inner piece off the outer piece's surface, taken just inside the inner
 // piece's solid (faces may touch, and faces written within the rounding of a contact may lie an
-// ulp on the wrong side of it: lies_inside). Which side of a closed piece is inside is the sign of its enclosed
-// volume (volume_sign, exact).
+// ulp on the wrong side of it: lies_inside); the same for an open piece inside a closed one. Which
+// side of a closed piece is inside is the sign of its enclosed volume (volume_sign, exact).
 // Storage: every triangle clockwise seen from its front, its geometric normal (b - a) x (c - a)
 // pointing to the back (the convention of validate_closed_convex, counter-clockwise from outside).
 #include "validation_internal.hpp"
@@ -343,7 +360,7 @@ std::optional<Failure> orient_scene_pieces(TriangleMesh& mesh, ScenePieces& out)
     pieces.push_back(std::move(piece));
   }
 
-  // 3. Nesting of the closed pieces, and which pieces lie inside the closed pieces inside no other.
+  // 3. Nesting of the closed pieces.
   std::vector<Index> closed;
   for (Sz i = 0; i < pieces.size(); ++i)
     if (pieces[i].closed) closed.push_back(static_cast<Index>(i));
@@ -352,9 +369,11 @@ std::optional<Failure> orient_scene_pieces(TriangleMesh& mesh, ScenePieces& out)
   std::vector<std::unique_ptr<ClosedSurface>> surfaces(pieces.size());
   if (pieces.size() > 1)
     for (Index i : closed) surfaces[at(i)] = closed_surface(piece_meshes[at(i)]);
+  std::vector<CGAL::Bbox_3> boxes(pieces.size());
+  for (Sz i = 0; i < pieces.size(); ++i) boxes[i] = mesh_box(piece_meshes[i]);
   // +1 inside, -1 outside, 0 on the surface (neither).
   const auto where = [&](Sz inner, Index outer) {
-    if (!box_inside(mesh_box(piece_meshes[inner]), surfaces[at(outer)]->box)) return -1;
+    if (!box_inside(boxes[inner], surfaces[at(outer)]->box)) return -1;
     const std::optional<bool> in = lies_inside(piece_meshes[inner], pieces[inner].closed, *surfaces[at(outer)]);
     return !in ? 0 : *in ? 1 : -1;
   };
@@ -380,46 +399,125 @@ std::optional<Failure> orient_scene_pieces(TriangleMesh& mesh, ScenePieces& out)
                                            "front side from; remove it or give it a volume"};
     p.file_front_outward = sign > 0;
   }
-  // Closed pieces inside no other: an enclosure when nothing of the scene lies outside it, an
-  // object when something does and nothing lies inside it; when both, the file's winding decides.
+  // The nesting forest: the root of each closed piece's tree (its container inside no other) and
+  // its depth there, the number of its containers (the nesting is laminar: pieces do not cross).
+  std::vector<Index> root_of(pieces.size(), kNone);
   for (Index i : closed) {
-    Piece& p = pieces[at(i)];
-    if (p.parent != kNone) continue;
-    bool contains = false, outside = false;
-    for (Sz j = 0; j < pieces.size() && !(contains && outside); ++j) {
-      if (j == at(i)) continue;
-      const int w = pieces[j].closed ? (std::find(pieces[j].containers.begin(), pieces[j].containers.end(), i) !=
-                                                pieces[j].containers.end()
-                                            ? 1
-                                            : where(j, i))
-                                     : where(j, i);
-      if (w == 1) contains = true;
-      if (w == -1) outside = true;
-    }
-    if (!outside) {
-      p.kind = Kind::enclosure;
-      p.why = contains ? "every other piece lies inside it" : "the only piece of the scene";
-    } else if (!contains) {
-      p.kind = Kind::object;
-      p.why = "other pieces lie outside it and none inside";
-    } else {
-      p.kind = p.file_front_outward ? Kind::object : Kind::enclosure;
-      p.why = "pieces lie both inside and outside it, so the file's winding decides";
-    }
+    root_of[at(i)] = i;
+    for (Index c : pieces[at(i)].containers)
+      if (pieces[at(c)].containers.empty()) root_of[at(i)] = c;
   }
-  // Nested pieces alternate, from the outermost in: inside an enclosure or a cavity an object,
-  // inside an object a cavity. Containers have fewer containers, so the order of depth is safe.
-  std::vector<Index> by_depth = closed;
-  std::stable_sort(by_depth.begin(), by_depth.end(),
-                   [&](Index a, Index b) { return pieces[at(a)].containers.size() < pieces[at(b)].containers.size(); });
-  for (Index i : by_depth) {
-    Piece& p = pieces[at(i)];
-    if (p.parent == kNone) continue;
-    const Piece& parent = pieces[at(p.parent)];
-    p.kind = parent.kind == Kind::object ? Kind::cavity : Kind::object;
-    p.why = (p.kind == Kind::cavity ? "inside the object piece " : "inside the ") +
-            std::string(p.kind == Kind::cavity ? "" : parent.kind == Kind::cavity ? "cavity piece " : "enclosure piece ") +
-            std::to_string(p.parent);
+  const auto depth = [&](Index i) { return pieces[at(i)].containers.size(); };
+  // Air that open pieces (one-sided sheets) live in. A sheet inside closed pieces lies in the air
+  // inside the innermost one, which is then an enclosure or a cavity: the room reading of its tree
+  // at even depth, the solid reading at odd depth. A sheet inside none lies in the air around every
+  // top-level closed piece it lies outside of, which is then an object: the solid reading. A sheet
+  // wholly on a surface is in neither. The first sheet that asks for each reading is kept.
+  struct Demand {
+    Index open = kNone;
+    Index air_of = kNone;  // the closed piece whose inside is that air; kNone: the air outside the root
+  };
+  std::vector<Demand> wants_room(pieces.size()), wants_solid(pieces.size());
+  for (Sz j = 0; j < pieces.size(); ++j) {
+    if (pieces[j].closed) continue;
+    Index inner = kNone;
+    for (Index c : closed)
+      if (where(j, c) == 1 && (inner == kNone || depth(c) > depth(inner))) inner = c;
+    if (inner != kNone) {
+      Demand& d = (depth(inner) % 2 == 0 ? wants_room : wants_solid)[at(root_of[at(inner)])];
+      if (d.open == kNone) d = {static_cast<Index>(j), inner};
+      continue;
+    }
+    for (Index r : closed)
+      if (pieces[at(r)].containers.empty() && wants_solid[at(r)].open == kNone && where(j, r) == -1)
+        wants_solid[at(r)] = {static_cast<Index>(j), kNone};
+  }
+
+  // Kinds, tree by tree. Physics fixes the alternation: a closed piece directly in the air of an
+  // enclosure or a cavity is an object (a body in that air), one directly in an object's solid a
+  // cavity. So a tree has two readings: from its root as a room (depth 0 an enclosure, odd depths
+  // objects, even depths cavities) or as a solid (even depths objects, odd depths cavities). The
+  // file's winding of each piece is the user's statement: the reading that puts the fewer pieces
+  // against it is kept, a tie going to the room (the outermost piece as the room). Open pieces
+  // overrule that when they lie in air that only one reading has, and a closed piece alone in the
+  // scene (every other piece, if any, on its surface) is an enclosure whatever its winding.
+  constexpr const char* kAlternate =
+      "alternate, a closed piece in the air of an enclosure or a cavity being an object and one in an object's "
+      "solid a cavity";
+  const auto air_words = [&](const Demand& d, Index r) {
+    return d.air_of == kNone ? std::string("outside it")
+           : d.air_of == r   ? std::string("inside it")
+                             : "inside piece " + std::to_string(d.air_of);
+  };
+  std::vector<std::vector<Index>> trees(pieces.size());
+  for (Index i : closed) trees[at(root_of[at(i)])].push_back(i);
+  for (Index r : closed) {
+    Piece& root = pieces[at(r)];
+    if (!root.containers.empty()) continue;
+    const std::vector<Index>& tree = trees[at(r)];
+    // Pieces against the file's winding when read as a room: those wound outward at even depth
+    // and inward at odd depth. Read as a solid, the others.
+    Sz against_room = 0;
+    for (Index i : tree) against_room += pieces[at(i)].file_front_outward == (depth(i) % 2 == 0);
+    const Sz against_solid = tree.size() - against_room;
+    bool alone = tree.size() == 1;
+    for (Sz j = 0; j < pieces.size() && alone; ++j)
+      if (j != at(r) && where(j, r) != 0) alone = false;
+    const Demand &room_d = wants_room[at(r)], &solid_d = wants_solid[at(r)];
+    const bool need_room = room_d.open != kNone, need_solid = solid_d.open != kNone;
+    // The counts of the two readings, the kept one first.
+    const auto counts = [&](bool as_room) {
+      if (tree.size() == 1)
+        return std::string("inside no other closed piece and holding none, so the file's winding decides");
+      const Sz kept = as_room ? against_room : against_solid, other = as_room ? against_solid : against_room;
+      std::string s = "the outermost of " + std::to_string(tree.size()) + " nested closed pieces, which " + kAlternate +
+                      ": " + std::to_string(kept) + " of them against the file's winding with it as " +
+                      (as_room ? "a room, " : "a solid, ") + std::to_string(other) + " with it as " +
+                      (as_room ? "a solid" : "a room");
+      return s + (kept == other ? "; as many either way, so the outermost piece is the room" : "");
+    };
+    const auto forced = [&](const Demand& d, bool as_room) {
+      std::string s = "open piece " + std::to_string(d.open) + " lies in the air " + air_words(d, r);
+      if (d.air_of == kNone) s += ", so it is a body seen from outside";
+      else if (d.air_of == r) s += ", so it is a room";
+      else s += ", so piece " + std::to_string(d.air_of) + " holds air";
+      if (tree.size() > 1) {
+        const Sz against = as_room ? against_room : against_solid;
+        s += ", and the " + std::to_string(tree.size()) + " nested closed pieces, which " + kAlternate +
+             ", follow from it: " + std::to_string(against) + " of them against the file's winding";
+      }
+      return s;
+    };
+    bool as_room = true;
+    if (alone) {
+      root.why = pieces.size() == 1 ? "the only piece of the scene"
+                                    : "every other piece of the scene lies on its surface, so it is alone: a room";
+    } else if (need_room != need_solid) {
+      as_room = need_room;
+      root.why = forced(need_room ? room_d : solid_d, as_room);
+    } else {
+      as_room = against_room <= against_solid;
+      root.why = counts(as_room);
+      if (need_room)  // and need_solid: air on both sides, which no reading gives
+        root.why = "open piece " + std::to_string(room_d.open) + " lies in the air " + air_words(room_d, r) +
+                   " and open piece " + std::to_string(solid_d.open) + " in the air " + air_words(solid_d, r) +
+                   ", which no reading allows (a closed surface has air on one side only); " + root.why;
+    }
+    for (Index i : tree)
+      pieces[at(i)].kind = i == r ? (as_room ? Kind::enclosure : Kind::object)
+                                  : ((depth(i) % 2 == 0) == as_room ? Kind::cavity : Kind::object);
+    for (Index i : tree) {
+      Piece& p = pieces[at(i)];
+      if (i == r) continue;
+      const Kind parent = pieces[at(p.parent)].kind;
+      const std::string in = "inside the " + std::string(parent == Kind::object      ? "object"
+                                                         : parent == Kind::cavity    ? "cavity"
+                                                                                     : "enclosure") +
+                             " piece " + std::to_string(p.parent);
+      p.why = in + (parent == Kind::object ? ": a closed piece in an object's solid is a cavity"
+                    : parent == Kind::cavity ? ": a closed piece in a cavity's air is an object"
+                                             : ": a closed piece in an enclosure's air is an object");
+    }
   }
 
   // 5. Stored clockwise from the front: an open piece reversed (its counter-clockwise side is the

@@ -6,6 +6,13 @@
 // point P_i the visible form factors of the surface sum to 1 and (K 1)_i = rho_i. With
 // E = c (1 - rho), the collocation system (I - K) u = E then has the solution u = c 1 exactly, for
 // any rho per facet: rho varies by facet so that a wrong row cannot hide behind a constant.
+// Where the orientation rule reads closed pieces as a solid (its outer surface an object facing the
+// unbounded air), the same system says more: an element in bounded air (a room, a closed cavity)
+// still has u = c exactly, its row being a closed scene's; an element in the unbounded air that
+// sees nothing (no vertex of the scene in front of its plane) has a zero row, so u = E exactly;
+// any other element in the unbounded air has E <= u <= c: K >= 0 entrywise with rows summing to
+// at most rho <= 0.7, so (I - K)^-1 = sum_k K^k >= 0; then u = c - w with w = (I - K)^-1 c (rho -
+// K 1) >= 0, and u = E + K u >= E as u = (I - K)^-1 E >= 0.
 //
 // Open scenes with direct lighting (a lamp above a receiving face that sees nothing else lit):
 // u_i = rho_i F_vis(P_i -> lamp), checked against the closed-form rectangle factor of
@@ -121,15 +128,29 @@ inline double place(const Frame& frame, int axis, const Coord& c) {
   return x;
 }
 
+/// Whether two coordinates land on the same double in every frame: the same base and the same
+/// nonzero gaps (a zero gap adds nothing).
+inline bool same_place(const Coord& a, const Coord& b) {
+  if (a.base != b.base) return false;
+  std::vector<double> ga, gb;
+  for (double g : a.gaps)
+    if (g != 0) ga.push_back(g);
+  for (double g : b.gaps)
+    if (g != 0) gb.push_back(g);
+  return ga == gb;
+}
+
 /// BoxFront's other side.
 inline BoxFront flipped(BoxFront f) { return f == BoxFront::inside ? BoxFront::outside : BoxFront::inside; }
 inline const char* to_string(BoxFront f) { return f == BoxFront::inside ? "wound inward" : "wound outward"; }
 
 /// Appends the planar polygon `corners` as one facet (add_polygon), its order reversed when needed
-/// so that it runs counter-clockwise seen from the side `front` points to (Newell normal).
+/// so that it runs counter-clockwise seen from the side `front` points to (Newell normal, from the
+/// corners relative to the first: absolute coordinates 1e8 away would cancel to noise).
 inline Index add_polygon_facing(TriangleMesh& mesh, std::vector<Vec3> corners, const Vec3& front) {
   Vec3 normal = Vec3::Zero();
-  for (std::size_t i = 0; i < corners.size(); ++i) normal += corners[i].cross(corners[(i + 1) % corners.size()]);
+  for (std::size_t i = 0; i < corners.size(); ++i)
+    normal += (corners[i] - corners[0]).cross(corners[(i + 1) % corners.size()] - corners[0]);
   if (normal.dot(front) < 0) std::reverse(corners.begin() + 1, corners.end());
   return add_polygon(mesh, corners);
 }
@@ -147,6 +168,10 @@ struct OracleBox {
     return s + to_string(front);
   }
 };
+
+/// Whether the element at collocation point P with front (inner normal) n faces the unbounded air:
+/// the outside of a solid, or a dent open to it. Empty: every element is in bounded air.
+using OpenAir = std::function<bool(const Vec3& P, const Vec3& n)>;
 
 /// Closed boxes (each a closed piece): typically a room first, then bodies and cavities.
 struct BoxScene {
@@ -171,11 +196,94 @@ struct BoxScene {
     for (std::size_t i = 0; i < boxes.size(); ++i) s += (i ? "; " : " ") + boxes[i].describe();
     return s;
   }
+
+  /// The depth of box i in the nesting: how many other boxes contain it (local coordinates,
+  /// touching allowed).
+  int depth(std::size_t i) const {
+    int d = 0;
+    for (std::size_t j = 0; j < boxes.size(); ++j) {
+      if (j == i) continue;
+      bool in = true;
+      for (int k = 0; k < 3; ++k)
+        in = in && boxes[j].lo[k].local() <= boxes[i].lo[k].local() && boxes[i].hi[k].local() <= boxes[j].hi[k].local();
+      d += in;
+    }
+    return d;
+  }
+
+  /// Whether the orientation rule (docs/scenes-and-visibility.md) reads this scene, whose first box
+  /// holds all the others, as a solid: the nesting alternates, so of its two readings (the first box
+  /// a room: front inward at even depth; or a solid: front outward at even depth) the one with
+  /// fewer boxes against their winding is kept, a tie and a box alone going to the room.
+  bool read_as_solid() const {
+    std::size_t against_room = 0;
+    for (std::size_t i = 0; i < boxes.size(); ++i)
+      against_room += (boxes[i].front == BoxFront::outside) == (depth(i) % 2 == 0);
+    return boxes.size() > 1 && boxes.size() - against_room < against_room;
+  }
+
+  /// Read as a solid, the boxes at depth 1 are its cavities. A cavity that touches the solid's
+  /// outer surface (a face in the same plane: gap 0), directly or through other cavities it
+  /// touches, is open to the outside there (the faces in contact are removed: the solid has no
+  /// thickness there), a dent. Per box: whether it is such a cavity.
+  std::vector<bool> dents() const {
+    std::vector<bool> dent(boxes.size(), false);
+    if (boxes.empty()) return dent;
+    const auto overlap = [&](const OracleBox& a, const OracleBox& b, int skip) {
+      for (int u = 0; u < 3; ++u)
+        if (u != skip && !(a.lo[u].local() < b.hi[u].local() && b.lo[u].local() < a.hi[u].local())) return false;
+      return true;
+    };
+    const OracleBox& room = boxes[0];
+    std::vector<bool> cavity(boxes.size(), false);
+    for (std::size_t i = 1; i < boxes.size(); ++i) {
+      cavity[i] = depth(i) == 1;
+      for (int k = 0; k < 3 && cavity[i]; ++k)
+        if (same_place(boxes[i].lo[k], room.lo[k]) || same_place(boxes[i].hi[k], room.hi[k])) dent[i] = true;
+    }
+    for (bool grew = true; grew;) {
+      grew = false;
+      for (std::size_t i = 1; i < boxes.size(); ++i)
+        for (std::size_t j = 1; j < boxes.size(); ++j) {
+          if (!cavity[i] || !cavity[j] || !dent[i] || dent[j]) continue;
+          for (int k = 0; k < 3; ++k)
+            if ((same_place(boxes[i].hi[k], boxes[j].lo[k]) || same_place(boxes[i].lo[k], boxes[j].hi[k])) &&
+                overlap(boxes[i], boxes[j], k)) {
+              dent[j] = grew = true;
+              break;
+            }
+        }
+    }
+    return dent;
+  }
+
+  /// Which elements face the unbounded air under the orientation rule: none when the first box is
+  /// read as a room; read as a solid, those whose front looks out of the first box or into a dent.
+  /// Decided a step of 1e-6 (local units) in front of the collocation point: far below every box
+  /// size and far above the rounding of the point in every frame (1.5e-8 at 1e8).
+  OpenAir open_air(const Frame& frame) const {
+    if (!read_as_solid()) return {};
+    return [scene = *this, frame, dent = dents()](const Vec3& P, const Vec3& n) {
+      const Vec3 q = (P - frame.offset) / frame.scale + 1e-6 * n;
+      const auto inside = [&](const OracleBox& b) {
+        for (int k = 0; k < 3; ++k)
+          if (!(b.lo[k].local() < q[k] && q[k] < b.hi[k].local())) return false;
+        return true;
+      };
+      if (!inside(scene.boxes[0])) return true;
+      for (std::size_t i = 1; i < scene.boxes.size(); ++i)
+        if (dent[i] && inside(scene.boxes[i])) return true;
+      return false;
+    };
+  }
 };
 
 /// How the closed pieces of a scene are wound in the input: as their front sides (rooms and
 /// cavities counter-clockwise seen from inside, bodies from outside), all reversed, or every
-/// second piece reversed. The orientation rule must give the same scene from each.
+/// second piece reversed. The orientation rule keeps the file's winding where the nesting allows
+/// it: all reversed, a room with bodies is a solid with cavities (BoxScene::read_as_solid says
+/// which reading each winding has); every second reversed, a room with one or two bodies is still
+/// read as a room (a tie, or fewer pieces against the file).
 enum class Winding { natural, reversed, alternate };
 inline const char* to_string(Winding w) {
   return w == Winding::natural ? "natural winding" : w == Winding::reversed ? "reversed winding" : "alternate winding";
@@ -523,19 +631,43 @@ struct OracleRun {
   Index n0 = 0, n = 0;        ///< triangles after validation; elements
   bool solved = false;
   std::string failure;        ///< the solver's message or exception
-  double error = std::numeric_limits<double>::quiet_NaN();  ///< max_i |u_i - c| / c
+  double error = std::numeric_limits<double>::quiet_NaN();  ///< max_i |u_i - c| / c, elements in bounded air
   std::string worst;          ///< where that error is
   double resolution = 0;      ///< coordinate_resolution of the input
   double tolerance = 0;       ///< oracle_tolerance(resolution)
   std::vector<std::string> notes;  ///< validation's
+  // Elements facing the unbounded air (OpenAir), when any:
+  Index bounded = 0, blind = 0, seeing = 0;  ///< elements in bounded air; in the open air seeing nothing; seeing
+  double blind_error = 0;     ///< max |u_i - E_i| / c over the blind ones (u = E exactly)
+  std::string worst_blind;
+  double outside_bounds = 0;  ///< max of (E_i - u_i) / c and (u_i - c) / c over the seeing ones (<= 0 inside)
+  std::string worst_seeing;
+  double lowest_seeing = std::numeric_limits<double>::infinity();  ///< min u_i / c over the seeing ones
+  double seeing_gain = 0;     ///< max (u_i - E_i) / c over the seeing ones: light they receive
 
   std::string describe() const {
     if (!valid) return "refused (" + rule + "): " + message;
     std::ostringstream s;
     s << geometry::to_string(shape) << (closed ? ", closed" : ", not closed") << ", n0 " << n0 << ", n " << n;
     if (!solved) return s.str() + ", not solved: " + failure;
-    s << ", max |u - c| / c = " << error << " (bound " << tolerance << ") at " << worst;
+    s << ", max |u - c| / c = " << error << " (bound " << tolerance << ") over " << bounded
+      << " elements in bounded air";
+    if (bounded > 0) s << " at " << worst;
+    if (blind + seeing > 0) {
+      s << "; in the unbounded air, " << blind << " seeing nothing with max |u - E| / c = " << blind_error;
+      if (blind > 0) s << " at " << worst_blind;
+      s << ", " << seeing << " seeing something";
+      if (seeing > 0)
+        s << " with E <= u <= c exceeded by " << outside_bounds << " c at " << worst_seeing << ", lowest u / c "
+          << lowest_seeing << ", largest (u - E) / c " << seeing_gain;
+    }
     return s.str();
+  }
+  /// u = c in bounded air, u = E on blind elements and E <= u <= c on the others, each within the
+  /// bound (false on NaN).
+  bool within_bounds() const {
+    return error < tolerance && blind_error < tolerance && !(outside_bounds >= tolerance) &&
+           !std::isnan(outside_bounds);
   }
 };
 
@@ -550,10 +682,14 @@ inline SolveOptions oracle_solver_options(int level) {
 }
 
 /// Validates `mesh` and solves it with rho(f) per facet and E = c (1 - rho): the closed-scene
-/// oracle, u = c. `level` < 0: level 1, or 0 when level 1 would have more than max_elements.
+/// oracle, u = c on every element in bounded air; on those `open_air` says face the unbounded air,
+/// u = E where the element sees nothing (no vertex of the validated scene in front of its plane,
+/// beyond 1e-9 of the scene's size plus 16 spacings of the doubles at its largest coordinate) and
+/// E <= u <= c elsewhere (see the top of this file). `level` < 0: level 1, or 0 when level 1 would
+/// have more than max_elements.
 inline OracleRun run_constant_oracle(TriangleMesh mesh, double c, int level,
                                      const std::function<double(Index)>& rho = oracle_rho,
-                                     Index max_elements = 1024) {
+                                     Index max_elements = 1024, const OpenAir& open_air = {}) {
   OracleRun run;
   run.resolution = coordinate_resolution(mesh);
   run.tolerance = oracle_tolerance(run.resolution);
@@ -586,18 +722,57 @@ inline OracleRun run_constant_oracle(TriangleMesh mesh, double c, int level,
     }
     run.solved = true;
     run.error = 0;
+    run.outside_bounds = -std::numeric_limits<double>::infinity();
     const Collocation& col = solver.collocation();
+    const std::vector<Vec3>& vertices = scene.mesh().vertices;
+    double largest = 0;
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (const Vec3& v : vertices) {
+      lo = lo.cwiseMin(v);
+      hi = hi.cwiseMax(v);
+      largest = std::max(largest, v.cwiseAbs().maxCoeff());
+    }
+    const double in_front = 1e-9 * (hi - lo).norm() + 16 * 0x1.0p-52 * largest;
+    const auto where = [&](Index i) {
+      const Vec3& P = col.collocation_point(i);
+      const Vec3& nP = col.normal(i);
+      std::ostringstream w;
+      w.precision(17);
+      w << "element " << i << " of facet " << col.facet(i) << ", P = (" << P.x() << ", " << P.y() << ", " << P.z()
+        << "), n = (" << nP.x() << ", " << nP.y() << ", " << nP.z() << "), u = " << s.u[i];
+      return w.str();
+    };
     for (Index i = 0; i < col.size(); ++i) {
+      if (open_air && open_air(col.collocation_point(i), col.normal(i))) {
+        const Vec3& P = col.collocation_point(i);
+        const Vec3& nP = col.normal(i);
+        bool sees = false;
+        for (const Vec3& v : vertices) sees = sees || (v - P).dot(nP) > in_front;
+        const double E = c * (1 - rho(col.facet(i)));
+        if (!sees) {
+          ++run.blind;
+          const double d = std::abs(s.u[i] - E) / c;
+          if (!std::isnan(run.blind_error) && !(d <= run.blind_error)) {
+            run.blind_error = d;
+            run.worst_blind = where(i) + ", E = " + std::to_string(E);
+          }
+        } else {
+          ++run.seeing;
+          const double d = std::max(E - s.u[i], s.u[i] - c) / c;
+          if (!std::isnan(run.outside_bounds) && !(d <= run.outside_bounds)) {
+            run.outside_bounds = d;
+            run.worst_seeing = where(i) + ", E = " + std::to_string(E);
+          }
+          if (!(s.u[i] / c >= run.lowest_seeing)) run.lowest_seeing = s.u[i] / c;
+          if (!((s.u[i] - E) / c <= run.seeing_gain)) run.seeing_gain = (s.u[i] - E) / c;
+        }
+        continue;
+      }
+      ++run.bounded;
       const double d = std::abs(s.u[i] - c) / c;
       if (!(d <= run.error)) {  // NaN counts as the worst
         run.error = d;
-        const Vec3& P = col.collocation_point(i);
-        const Vec3& nP = col.normal(i);
-        std::ostringstream w;
-        w.precision(17);
-        w << "element " << i << " of facet " << col.facet(i) << ", P = (" << P.x() << ", " << P.y() << ", " << P.z()
-          << "), n = (" << nP.x() << ", " << nP.y() << ", " << nP.z() << "), u = " << s.u[i];
-        run.worst = w.str();
+        run.worst = where(i);
         if (std::isnan(d)) break;
       }
     }

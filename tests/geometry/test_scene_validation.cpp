@@ -1,5 +1,7 @@
 // validate_scene on scenes built in code: the convex path kept bit for bit, closed rooms with
-// objects (front inward and outward, checked against the known inside of each box), open surfaces
+// objects and solids with cavities (front inward and outward, checked against the known inside of
+// each box; the file's winding kept unless the nesting or an open piece in the air forbids it, then
+// the reading with the fewest pieces against it, ties to the room), open surfaces
 // (front on their counter-clockwise side), touching faces accepted, crossing faces and one-sided
 // pieces refused with the faces and a point named, faces flipped to the majority of their piece.
 #include <panelrad/geometry/builtin_scenes.hpp>
@@ -16,6 +18,7 @@
 #include <limits>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pg = panelrad::geometry;
@@ -184,7 +187,7 @@ TEST(SceneValidation, ClosedRoomWithABoxInside) {
   SceneBuilder b;
   const pg::Vec3 rlo(0, 0, 0), rhi(4, 3, 2.5), blo(1, 1, 0.5), bhi(2, 1.5, 1.5);
   b.box(rlo, rhi, /*outward=*/true);   // the usual export: counter-clockwise from outside
-  b.box(blo, bhi, /*outward=*/false);  // deliberately the other way
+  b.box(blo, bhi, /*outward=*/false);  // and the box inward
   pg::SceneValidationReport r = pg::validate_scene(b.mesh);
   ASSERT_TRUE(r.valid) << r.message;
   EXPECT_EQ(r.shape, pg::SceneShape::general);
@@ -196,18 +199,42 @@ TEST(SceneValidation, ClosedRoomWithABoxInside) {
   ASSERT_EQ(r.notes.size(), 3u);
   EXPECT_CONTAINS(r.notes[0], "not one closed convex surface (connected: the surface has 2 separate pieces");
   EXPECT_CONTAINS(r.notes[0], "the visibility V(P, Q) is computed");
-  EXPECT_CONTAINS(r.notes[1], "piece 0 (12 triangles, closed): an enclosure, front side inward, against the file's winding");
-  EXPECT_CONTAINS(r.notes[2], "piece 1 (12 triangles, closed): an object, front side outward, against the file's winding (its faces run counter-clockwise seen from inside) (inside the enclosure piece 0)");
-  // The room's fronts point into its volume; the box's away from it, into the room's air.
-  expect_front_into(b.mesh, 0, 12, [&](const pg::Vec3& p) { return in_box(p, rlo, rhi); }, "room");
-  expect_front_into(b.mesh, 12, 24, [&](const pg::Vec3& p) { return !in_box(p, blo, bhi); }, "box");
-  // Nested: a box inside the box (an object) is a cavity of it, front side inward.
-  b.box({1.2, 1.1, 0.7}, {1.4, 1.3, 0.9});
-  r = pg::validate_scene(b.mesh);
+  // Wound so, the file consistently describes a solid (outer surface outward) with a cavity
+  // (inward): of the nesting's two readings that one has no piece against the file's winding, the
+  // other (a room with a body) two, so the file is kept.
+  EXPECT_EQ(r.pieces_against_file, 0u);
+  EXPECT_CONTAINS(r.notes[1], "piece 0 (12 triangles, closed): an object, front side outward, as the file winds it");
+  EXPECT_CONTAINS(r.notes[1], "0 of them against the file's winding with it as a solid, 2 with it as a room");
+  EXPECT_CONTAINS(r.notes[2], "piece 1 (12 triangles, closed): a cavity, front side inward, as the file winds it (inside the object piece 0");
+  expect_front_into(b.mesh, 0, 12, [&](const pg::Vec3& p) { return !in_box(p, rlo, rhi); }, "solid");
+  expect_front_into(b.mesh, 12, 24, [&](const pg::Vec3& p) { return in_box(p, blo, bhi); }, "cavity");
+  // Nested: a box wound outward inside the cavity is a body in the cavity's air, front outward.
+  // (A fresh scene: validation stores the triangles clockwise from the front, so the mesh above
+  // no longer carries the file's winding.)
+  SceneBuilder n;
+  n.box(rlo, rhi, true);
+  n.box(blo, bhi, false);
+  n.box({1.2, 1.1, 0.7}, {1.4, 1.3, 0.9});
+  r = pg::validate_scene(n.mesh);
   ASSERT_TRUE(r.valid) << r.message;
   ASSERT_EQ(r.notes.size(), 4u);
-  EXPECT_CONTAINS(r.notes[3], "piece 2 (12 triangles, closed): a cavity, front side inward");
-  EXPECT_CONTAINS(r.notes[3], "inside the object piece 1");
+  EXPECT_EQ(r.pieces_against_file, 0u);
+  EXPECT_CONTAINS(r.notes[3], "piece 2 (12 triangles, closed): an object, front side outward, as the file winds it");
+  EXPECT_CONTAINS(r.notes[3], "inside the cavity piece 1");
+  // The room with the box as exporters write both (outward): the two readings tie (one piece
+  // against the file each), and the outermost piece is taken as the room.
+  SceneBuilder e;
+  e.box(rlo, rhi, true);
+  e.box(blo, bhi, true);
+  r = pg::validate_scene(e.mesh);
+  ASSERT_TRUE(r.valid) << r.message;
+  EXPECT_EQ(r.pieces_against_file, 1u);
+  EXPECT_CONTAINS(r.notes[1], "piece 0 (12 triangles, closed): an enclosure, front side inward, against the file's winding (its faces run counter-clockwise seen from outside)");
+  EXPECT_CONTAINS(r.notes[1], "1 of them against the file's winding with it as a room, 1 with it as a solid");
+  EXPECT_CONTAINS(r.notes[1], "the outermost piece is the room");
+  EXPECT_CONTAINS(r.notes[2], "piece 1 (12 triangles, closed): an object, front side outward, as the file winds it (inside the enclosure piece 0");
+  expect_front_into(e.mesh, 0, 12, [&](const pg::Vec3& p) { return in_box(p, rlo, rhi); }, "room");
+  expect_front_into(e.mesh, 12, 24, [&](const pg::Vec3& p) { return !in_box(p, blo, bhi); }, "box");
 }
 
 TEST(SceneValidation, LShapedRoomIsOneClosedNonConvexPiece) {
@@ -242,9 +269,10 @@ TEST(SceneValidation, LShapedRoomIsOneClosedNonConvexPiece) {
   expect_front_into(b.mesh, 0, 20, in_l, "L room");
 }
 
-TEST(SceneValidation, TwoSeparateBoxesAreObjectsSeenFromOutside) {
-  // Each box has the other outside it and nothing inside: two bodies in an open scene, whatever
-  // their winding (the second is wound inward, which the rule overrides and says so).
+TEST(SceneValidation, TwoSeparateBoxesFollowTheirWindings) {
+  // Neither box is inside the other and no open piece lies in the air around them, so nothing
+  // forces either: each is what the file winds it as, the first a body (outward), the second a
+  // room (inward). Closed pieces side by side do not constrain each other.
   SceneBuilder b;
   const pg::Vec3 alo(0, 0, 0), ahi(1, 1, 1), blo(2, 0, 0), bhi(3, 1, 1);
   b.box(alo, ahi);
@@ -253,13 +281,177 @@ TEST(SceneValidation, TwoSeparateBoxesAreObjectsSeenFromOutside) {
   ASSERT_TRUE(r.valid) << r.message;
   EXPECT_EQ(r.pieces, 2u);
   EXPECT_EQ(r.closed_pieces, 2u);
-  EXPECT_EQ(r.pieces_against_file, 1u);
+  EXPECT_EQ(r.pieces_against_file, 0u);
   ASSERT_EQ(r.notes.size(), 3u);
   EXPECT_CONTAINS(r.notes[1], "piece 0 (12 triangles, closed): an object, front side outward, as the file winds it");
-  EXPECT_CONTAINS(r.notes[1], "other pieces lie outside it and none inside");
-  EXPECT_CONTAINS(r.notes[2], "an object, front side outward, against the file's winding");
+  EXPECT_CONTAINS(r.notes[1], "inside no other closed piece and holding none, so the file's winding decides");
+  EXPECT_CONTAINS(r.notes[2], "piece 1 (12 triangles, closed): an enclosure, front side inward, as the file winds it");
   expect_front_into(b.mesh, 0, 12, [&](const pg::Vec3& p) { return !in_box(p, alo, ahi); }, "first box");
-  expect_front_into(b.mesh, 12, 24, [&](const pg::Vec3& p) { return !in_box(p, blo, bhi); }, "second box");
+  expect_front_into(b.mesh, 12, 24, [&](const pg::Vec3& p) { return in_box(p, blo, bhi); }, "second box");
+}
+
+TEST(SceneValidation, TwoSeparateRoomsWoundInwardAreBothEnclosures) {
+  SceneBuilder b;
+  const pg::Vec3 alo(0, 0, 0), ahi(1, 1, 1), blo(2, 0, 0), bhi(3, 1, 1);
+  b.box(alo, ahi, false);
+  b.box(blo, bhi, false);
+  const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
+  ASSERT_TRUE(r.valid) << r.message;
+  EXPECT_EQ(r.pieces_against_file, 0u);
+  ASSERT_EQ(r.notes.size(), 3u);
+  EXPECT_CONTAINS(r.notes[1], "piece 0 (12 triangles, closed): an enclosure, front side inward, as the file winds it");
+  EXPECT_CONTAINS(r.notes[2], "piece 1 (12 triangles, closed): an enclosure, front side inward, as the file winds it");
+  expect_front_into(b.mesh, 0, 12, [&](const pg::Vec3& p) { return in_box(p, alo, ahi); }, "first room");
+  expect_front_into(b.mesh, 12, 24, [&](const pg::Vec3& p) { return in_box(p, blo, bhi); }, "second room");
+}
+
+TEST(SceneValidation, LShapedRoomAndABoxInItsNotchWoundInwardAreBothEnclosures) {
+  // The L = [0,2]x[0,1] u [0,1]x[0,2] extruded over z in [0,1], wound inward, and the closed box
+  // [1.2,1.8]x[1.2,1.8]x[0.2,0.8] in its notch (outside the L, touching nothing), wound inward.
+  SceneBuilder b;
+  const std::vector<pg::Vec3> l = {{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}};
+  std::vector<pg::Index> bottom, top;
+  for (const auto& p : l) bottom.push_back(b.vertex(p));
+  for (const auto& p : l) top.push_back(b.vertex(p + pg::Vec3(0, 0, 1)));
+  const auto rot = [](std::vector<pg::Index> v) {
+    std::rotate(v.begin(), v.begin() + 3, v.end());
+    return v;
+  };
+  b.facing(rot(bottom), {0, 0, 1});
+  b.facing(rot(top), {0, 0, -1});
+  for (std::size_t i = 0; i < l.size(); ++i) {
+    const std::size_t j = (i + 1) % l.size();
+    const pg::Vec3 edge = l[j] - l[i];
+    b.facing({bottom[i], bottom[j], top[j], top[i]}, pg::Vec3(-edge.y(), edge.x(), 0));
+  }
+  const pg::Vec3 blo(1.2, 1.2, 0.2), bhi(1.8, 1.8, 0.8);
+  b.box(blo, bhi, false);
+  const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
+  ASSERT_TRUE(r.valid) << r.message;
+  EXPECT_EQ(r.closed_pieces, 2u);
+  EXPECT_EQ(r.pieces_against_file, 0u);
+  ASSERT_EQ(r.notes.size(), 3u);
+  EXPECT_CONTAINS(r.notes[1], "piece 0 (20 triangles, closed): an enclosure, front side inward, as the file winds it");
+  EXPECT_CONTAINS(r.notes[2], "piece 1 (12 triangles, closed): an enclosure, front side inward, as the file winds it");
+  const auto in_l = [](const pg::Vec3& p) {
+    return p.z() > 0 && p.z() < 1 && p.x() > 0 && p.y() > 0 && ((p.x() < 2 && p.y() < 1) || (p.x() < 1 && p.y() < 2));
+  };
+  expect_front_into(b.mesh, 0, 20, in_l, "L room");
+  expect_front_into(b.mesh, 20, 32, [&](const pg::Vec3& p) { return in_box(p, blo, bhi); }, "room in the notch");
+}
+
+TEST(SceneValidation, LoneHollowSolidIsAnObjectWithACavity) {
+  // Outer surface wound outward, the cavity inward, nothing else: a solid with a cavity, as the
+  // file winds it (reading it as a room with a body would put both pieces against the file).
+  for (const bool outward : {true, false}) {
+    SceneBuilder b;
+    const pg::Vec3 slo(0, 0, 0), shi(1, 1, 1), clo(0.3, 0.3, 0.3), chi(0.7, 0.7, 0.7);
+    b.box(slo, shi, outward);
+    b.box(clo, chi, !outward);
+    const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
+    ASSERT_TRUE(r.valid) << r.message;
+    EXPECT_EQ(r.pieces_against_file, 0u);
+    ASSERT_EQ(r.notes.size(), 3u);
+    if (outward) {
+      EXPECT_CONTAINS(r.notes[1], "piece 0 (12 triangles, closed): an object, front side outward, as the file winds it");
+      EXPECT_CONTAINS(r.notes[2], "piece 1 (12 triangles, closed): a cavity, front side inward, as the file winds it");
+      expect_front_into(b.mesh, 0, 12, [&](const pg::Vec3& p) { return !in_box(p, slo, shi); }, "solid");
+      expect_front_into(b.mesh, 12, 24, [&](const pg::Vec3& p) { return in_box(p, clo, chi); }, "cavity");
+    } else {  // wound the other way, the same file says a room with a body: so it is
+      EXPECT_CONTAINS(r.notes[1], "piece 0 (12 triangles, closed): an enclosure, front side inward, as the file winds it");
+      EXPECT_CONTAINS(r.notes[2], "piece 1 (12 triangles, closed): an object, front side outward, as the file winds it");
+      expect_front_into(b.mesh, 0, 12, [&](const pg::Vec3& p) { return in_box(p, slo, shi); }, "room");
+      expect_front_into(b.mesh, 12, 24, [&](const pg::Vec3& p) { return !in_box(p, clo, chi); }, "body");
+    }
+  }
+}
+
+TEST(SceneValidation, RoomWoundOutwardWithFurnitureIsAnEnclosure) {
+  // As exporters write a room: every piece counter-clockwise from outside. With one body the two
+  // readings tie (the room or the body against the file), the outermost is the room; with three,
+  // reading the room as a solid would put its three cavities against the file, reading it as a
+  // room only itself.
+  for (const int bodies : {1, 3}) {
+    SceneBuilder b;
+    const pg::Vec3 rlo(0, 0, 0), rhi(4, 4, 2);
+    b.box(rlo, rhi, true);
+    std::vector<std::pair<pg::Vec3, pg::Vec3>> boxes = {
+        {{0.5, 0.5, 0.5}, {1.5, 1.5, 1.0}}, {{2.5, 0.5, 0.5}, {3.5, 1.5, 1.0}}, {{1.5, 2.5, 0.5}, {2.5, 3.5, 1.5}}};
+    boxes.resize(static_cast<std::size_t>(bodies));
+    for (const auto& [lo, hi] : boxes) b.box(lo, hi, true);
+    const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
+    ASSERT_TRUE(r.valid) << r.message;
+    EXPECT_EQ(r.pieces_against_file, 1u) << bodies;
+    ASSERT_GE(r.notes.size(), 2u);
+    EXPECT_CONTAINS(r.notes[1], "piece 0 (12 triangles, closed): an enclosure, front side inward, against the file's winding");
+    EXPECT_CONTAINS(r.notes[1], "1 of them against the file's winding with it as a room, " + std::to_string(bodies) +
+                                    " with it as a solid");
+    if (bodies == 1) {
+      EXPECT_CONTAINS(r.notes[1], "the outermost piece is the room");
+    }
+    expect_front_into(b.mesh, 0, 12, [&](const pg::Vec3& p) { return in_box(p, rlo, rhi); }, "room");
+    for (std::size_t k = 0; k < boxes.size(); ++k) {
+      EXPECT_CONTAINS(r.notes[2 + k], "an object, front side outward, as the file winds it (inside the enclosure piece 0");
+      const auto& [lo, hi] = boxes[k];
+      expect_front_into(b.mesh, 12 * (k + 1), 12 * (k + 2), [&](const pg::Vec3& p) { return !in_box(p, lo, hi); }, "box");
+    }
+  }
+}
+
+TEST(SceneValidation, PieceWoundAgainstItsNestingIsOverriddenByThePhysicalRule) {
+  // A room wound inward with two bodies wound outward and one wound inward: a closed piece in a
+  // room's air is a body, so the third is overridden (reading the room as a solid instead would
+  // override three), and its note says which rule.
+  SceneBuilder b;
+  b.box({0, 0, 0}, {4, 4, 2}, false);
+  b.box({0.5, 0.5, 0.5}, {1.5, 1.5, 1.0});
+  b.box({2.5, 0.5, 0.5}, {3.5, 1.5, 1.0});
+  const pg::Vec3 lo(1.5, 2.5, 0.5), hi(2.5, 3.5, 1.5);
+  b.box(lo, hi, false);
+  const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
+  ASSERT_TRUE(r.valid) << r.message;
+  EXPECT_EQ(r.pieces_against_file, 1u);
+  ASSERT_EQ(r.notes.size(), 5u);
+  EXPECT_CONTAINS(r.notes[1], "piece 0 (12 triangles, closed): an enclosure, front side inward, as the file winds it");
+  EXPECT_CONTAINS(r.notes[1], "1 of them against the file's winding with it as a room, 3 with it as a solid");
+  EXPECT_CONTAINS(r.notes[4], "piece 3 (12 triangles, closed): an object, front side outward, against the file's winding "
+                              "(its faces run counter-clockwise seen from inside) (inside the enclosure piece 0: a closed "
+                              "piece in an enclosure's air is an object)");
+  expect_front_into(b.mesh, 36, 48, [&](const pg::Vec3& p) { return !in_box(p, lo, hi); }, "overridden box");
+}
+
+TEST(SceneValidation, RoomWithALampInsideIsAnEnclosureWhateverItsWinding) {
+  // An open lamp inside the room lives in the room's air: the room cannot be a solid.
+  for (const bool outward : {true, false}) {
+    SceneBuilder b;
+    const pg::Vec3 lo(0, 0, 0), hi(2, 2, 2);
+    b.box(lo, hi, outward);
+    b.quad({0.5, 0.5, 1.8}, {1, 0, 0}, {0, 1, 0}, {0, 0, -1});
+    const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
+    ASSERT_TRUE(r.valid) << r.message;
+    EXPECT_EQ(r.pieces_against_file, outward ? 1u : 0u);
+    EXPECT_CONTAINS(r.notes[1], "piece 0 (12 triangles, closed): an enclosure, front side inward");
+    EXPECT_CONTAINS(r.notes[1], "open piece 1 lies in the air inside it");
+    expect_front_into(b.mesh, 0, 12, [&](const pg::Vec3& p) { return in_box(p, lo, hi); }, "room");
+  }
+}
+
+TEST(SceneValidation, ClosedPieceWithOpenPiecesInsideAndOutsideFollowsTheFile) {
+  // A lamp inside the box and a sheet outside it: the box would need air on both sides, which a
+  // closed one-sided surface cannot have, so the file's winding decides and the note says why.
+  for (const bool outward : {true, false}) {
+    SceneBuilder b;
+    const pg::Vec3 lo(0, 0, 0), hi(2, 2, 2);
+    b.box(lo, hi, outward);
+    b.quad({0.5, 0.5, 1.8}, {1, 0, 0}, {0, 1, 0}, {0, 0, -1});
+    b.quad({0, 0, 3}, {2, 0, 0}, {0, 2, 0}, {0, 0, -1});
+    const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
+    ASSERT_TRUE(r.valid) << r.message;
+    EXPECT_EQ(r.pieces_against_file, 0u);
+    EXPECT_CONTAINS(r.notes[1], outward ? "an object, front side outward, as the file winds it"
+                                        : "an enclosure, front side inward, as the file winds it");
+    EXPECT_CONTAINS(r.notes[1], "open piece 1 lies in the air inside it and open piece 2 in the air outside it");
+  }
 }
 
 TEST(SceneValidation, ClosedCubeUnderALampIsSeenFromOutsideWhateverItsWinding) {
@@ -277,7 +469,7 @@ TEST(SceneValidation, ClosedCubeUnderALampIsSeenFromOutsideWhateverItsWinding) {
   }
 }
 
-TEST(SceneValidation, RoomHoldingEverythingIsAnEnclosureWhateverItsWinding) {
+TEST(SceneValidation, RoomHoldingEverythingIsReadWithTheFewestPiecesAgainstTheFile) {
   for (const bool outward : {true, false}) {
     SceneBuilder b;
     b.box({0, 0, 0}, {2, 1, 1}, outward);
@@ -285,40 +477,79 @@ TEST(SceneValidation, RoomHoldingEverythingIsAnEnclosureWhateverItsWinding) {
     b.box({-1, -1, -1}, {5, 2, 2}, outward);
     const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
     ASSERT_TRUE(r.valid) << r.message;
-    // The outer box holds the other two: an enclosure; they are objects inside it.
-    expect_front_into(b.mesh, 24, 36, [&](const pg::Vec3& p) { return in_box(p, {-1, -1, -1}, {5, 2, 2}); }, "outer");
-    expect_front_into(b.mesh, 0, 12, [&](const pg::Vec3& p) { return !in_box(p, {0, 0, 0}, {2, 1, 1}); }, "inner");
-    EXPECT_CONTAINS(r.notes[3], "piece 2 (12 triangles, closed): an enclosure, front side inward");
-    EXPECT_CONTAINS(r.notes[3], "every other piece lies inside it");
+    EXPECT_EQ(r.pieces_against_file, 1u);
+    if (outward) {
+      // The outer box holds the other two: read as a room, only it is against the file's winding
+      // (the two inside are bodies as wound); read as a solid, its two cavities would be.
+      expect_front_into(b.mesh, 24, 36, [&](const pg::Vec3& p) { return in_box(p, {-1, -1, -1}, {5, 2, 2}); }, "outer");
+      expect_front_into(b.mesh, 0, 12, [&](const pg::Vec3& p) { return !in_box(p, {0, 0, 0}, {2, 1, 1}); }, "inner");
+      EXPECT_CONTAINS(r.notes[3], "piece 2 (12 triangles, closed): an enclosure, front side inward, against the file's winding");
+      EXPECT_CONTAINS(r.notes[3], "1 of them against the file's winding with it as a room, 2 with it as a solid");
+    } else {
+      // All three wound as rooms: two rooms cannot float in a room's air (a closed piece there is
+      // a body), so one reading overrides the two inside, the other only the outer box, which
+      // becomes a solid with two cavities, as the two inner pieces are wound.
+      expect_front_into(b.mesh, 24, 36, [&](const pg::Vec3& p) { return !in_box(p, {-1, -1, -1}, {5, 2, 2}); }, "outer");
+      expect_front_into(b.mesh, 0, 12, [&](const pg::Vec3& p) { return in_box(p, {0, 0, 0}, {2, 1, 1}); }, "inner");
+      EXPECT_CONTAINS(r.notes[3], "piece 2 (12 triangles, closed): an object, front side outward, against the file's winding");
+      EXPECT_CONTAINS(r.notes[3], "1 of them against the file's winding with it as a solid, 2 with it as a room");
+      EXPECT_CONTAINS(r.notes[1], "piece 0 (12 triangles, closed): a cavity, front side inward, as the file winds it");
+    }
   }
 }
 
 TEST(SceneValidation, CavityInsideAnObjectInsideARoomAlternates) {
   // Room (front inward), a thick shell (front outward), its closed cavity (front inward) and a
-  // ball in the cavity (front outward), each given with the wrong winding.
-  SceneBuilder b;
+  // ball in the cavity (front outward), each given with the wrong winding: the nesting still
+  // alternates, and the file's own alternation is the reading with no piece against it (a solid,
+  // a cavity in it, a body in the cavity, a cavity in the body). One piece wound against an
+  // otherwise consistent nesting is overridden, and its note names the rule.
   const pg::Vec3 rlo(0, 0, 0), rhi(4, 4, 4), slo(1, 1, 1), shi(3, 3, 3), clo(1.5, 1.5, 1.5), chi(2.5, 2.5, 2.5),
       blo(1.8, 1.8, 1.8), bhi(2.2, 2.2, 2.2);
-  b.box(rlo, rhi, true);
-  b.box(slo, shi, false);
-  b.box(clo, chi, true);
-  b.box(blo, bhi, false);
+  {
+    SceneBuilder b;
+    b.box(rlo, rhi, true);
+    b.box(slo, shi, false);
+    b.box(clo, chi, true);
+    b.box(blo, bhi, false);
+    const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
+    ASSERT_TRUE(r.valid) << r.message;
+    EXPECT_EQ(r.pieces_against_file, 0u);
+    expect_front_into(b.mesh, 0, 12, [&](const pg::Vec3& p) { return !in_box(p, rlo, rhi); }, "solid");
+    expect_front_into(b.mesh, 12, 24, [&](const pg::Vec3& p) { return in_box(p, slo, shi); }, "its cavity");
+    expect_front_into(b.mesh, 24, 36, [&](const pg::Vec3& p) { return !in_box(p, clo, chi); }, "body in the cavity");
+    expect_front_into(b.mesh, 36, 48, [&](const pg::Vec3& p) { return in_box(p, blo, bhi); }, "its cavity");
+    EXPECT_CONTAINS(r.notes[1], "0 of them against the file's winding with it as a solid, 4 with it as a room");
+    EXPECT_CONTAINS(r.notes[3], "piece 2 (12 triangles, closed): an object, front side outward");
+    EXPECT_CONTAINS(r.notes[3], "inside the cavity piece 1");
+    EXPECT_CONTAINS(r.notes[4], "a cavity, front side inward");
+    EXPECT_CONTAINS(r.notes[4], "inside the object piece 2");
+  }
+  SceneBuilder b;
+  b.box(rlo, rhi, false);
+  b.box(slo, shi, false);  // the one against the nesting
+  b.box(clo, chi, false);
+  b.box(blo, bhi, true);
   const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
   ASSERT_TRUE(r.valid) << r.message;
-  EXPECT_EQ(r.pieces_against_file, 4u);
+  EXPECT_EQ(r.pieces_against_file, 1u);
   expect_front_into(b.mesh, 0, 12, [&](const pg::Vec3& p) { return in_box(p, rlo, rhi); }, "room");
   expect_front_into(b.mesh, 12, 24, [&](const pg::Vec3& p) { return !in_box(p, slo, shi); }, "shell");
   expect_front_into(b.mesh, 24, 36, [&](const pg::Vec3& p) { return in_box(p, clo, chi); }, "cavity");
   expect_front_into(b.mesh, 36, 48, [&](const pg::Vec3& p) { return !in_box(p, blo, bhi); }, "ball");
+  EXPECT_CONTAINS(r.notes[2], "piece 1 (12 triangles, closed): an object, front side outward, against the file's "
+                              "winding (its faces run counter-clockwise seen from inside) (inside the enclosure piece 0: "
+                              "a closed piece in an enclosure's air is an object)");
   EXPECT_CONTAINS(r.notes[3], "piece 2 (12 triangles, closed): a cavity, front side inward");
-  EXPECT_CONTAINS(r.notes[3], "inside the object piece 1");
+  EXPECT_CONTAINS(r.notes[3], "inside the object piece 1: a closed piece in an object's solid is a cavity");
   EXPECT_CONTAINS(r.notes[4], "an object, front side outward");
-  EXPECT_CONTAINS(r.notes[4], "inside the cavity piece 2");
+  EXPECT_CONTAINS(r.notes[4], "inside the cavity piece 2: a closed piece in a cavity's air is an object");
 }
 
-TEST(SceneValidation, HollowObjectInAnOpenSceneFollowsTheFilesWinding) {
-  // A shell with a cavity and a lamp outside: pieces inside and outside the shell, so the file's
-  // winding decides, and the note says so.
+TEST(SceneValidation, HollowObjectUnderALampIsAnObjectWhateverItsWinding) {
+  // A shell with a cavity and a lamp outside: the lamp hangs in the air around the shell, so the
+  // shell is a solid seen from outside and its cavity a cavity, whatever the winding; wound the
+  // other way both are overridden, and the notes name the lamp.
   for (const bool outward : {true, false}) {
     SceneBuilder b;
     const pg::Vec3 slo(1, 1, 1), shi(3, 3, 3), clo(1.5, 1.5, 1.5), chi(2.5, 2.5, 2.5);
@@ -327,15 +558,12 @@ TEST(SceneValidation, HollowObjectInAnOpenSceneFollowsTheFilesWinding) {
     b.quad({0, 0, 5}, {4, 0, 0}, {0, 4, 0}, {0, 0, -1});
     const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
     ASSERT_TRUE(r.valid) << r.message;
-    EXPECT_CONTAINS(r.notes[1], "the file's winding decides");
-    EXPECT_EQ(r.pieces_against_file, 0u);
-    if (outward) {
-      expect_front_into(b.mesh, 0, 12, [&](const pg::Vec3& p) { return !in_box(p, slo, shi); }, "shell");
-      expect_front_into(b.mesh, 12, 24, [&](const pg::Vec3& p) { return in_box(p, clo, chi); }, "cavity");
-    } else {
-      expect_front_into(b.mesh, 0, 12, [&](const pg::Vec3& p) { return in_box(p, slo, shi); }, "shell");
-      expect_front_into(b.mesh, 12, 24, [&](const pg::Vec3& p) { return !in_box(p, clo, chi); }, "cavity");
-    }
+    EXPECT_CONTAINS(r.notes[1], "open piece 2 lies in the air outside it");
+    EXPECT_EQ(r.pieces_against_file, outward ? 0u : 2u);
+    EXPECT_CONTAINS(r.notes[1], "an object, front side outward");
+    EXPECT_CONTAINS(r.notes[2], "a cavity, front side inward");
+    expect_front_into(b.mesh, 0, 12, [&](const pg::Vec3& p) { return !in_box(p, slo, shi); }, "shell");
+    expect_front_into(b.mesh, 12, 24, [&](const pg::Vec3& p) { return in_box(p, clo, chi); }, "cavity");
   }
 }
 

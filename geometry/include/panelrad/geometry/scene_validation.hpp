@@ -42,7 +42,7 @@ struct SceneValidationReport {
   std::size_t pieces = 0;          ///< connected pieces (triangles joined across edges they share)
   std::size_t closed_pieces = 0;   ///< of which closed (every edge in two of its triangles)
   std::size_t pieces_against_file = 0;  ///< closed pieces whose front side is the back side of the
-                                        ///< file's winding (the rules below overrode it)
+                                        ///< file's winding (the rule below overrode it)
   std::size_t t_junctions_split = 0;    ///< vertices inserted into edges they lay inside
   std::vector<SceneContact> contacts;   ///< pairs of input faces in contact
   double contact_area_removed = 0;      ///< area removed in all from faces in contact
@@ -72,15 +72,18 @@ struct SceneValidationReport {
 ///    Front sides (the side that emits, reflects and sees: the paper's inner normal n), by nesting
 ///    of the closed pieces (ray parity, exact predicates):
 ///    - an open piece: the side from which the input polygons run counter-clockwise (OBJ/OFF);
-///    - a closed piece inside no other closed piece: an enclosure (front inward) when nothing else
-///      of the scene lies outside it (a room, alone or with its contents); an object (front
-///      outward) when other pieces lie outside it and none inside (a body in an open scene); when
-///      pieces lie both inside and outside it, the file's winding decides (the counter-clockwise
-///      side is the front);
-///    - inside an enclosure or a cavity, an object; inside an object, a cavity (front inward); and
-///      so on down the nesting.
-///    The file's winding of a closed piece is overridden where these rules say so; notes name each
-///    piece, what it is, why, and whether that is as the file winds it.
+///    - a closed piece: as the file winds it (the side most of its area runs counter-clockwise
+///      from), unless physics forbids it. A closed piece directly in the air of an enclosure or a
+///      cavity is an object (front outward), directly in an object's solid a cavity (front
+///      inward), so each tree of the nesting has two readings from its outermost piece: a room
+///      (enclosure) or a solid (object). Kept: the one with fewer pieces against the file's
+///      winding, a tie going to the room. An open piece lies in air: inside closed pieces, in the
+///      innermost one's (an enclosure or a cavity); inside none, around every top-level closed
+///      piece it lies outside of (each an object); where that asks for one reading, it is taken.
+///      A closed piece alone in the scene (others, if any, on its surface) is an enclosure.
+///      Separate top-level closed pieces do not constrain each other (docs/scenes-and-visibility.md).
+///    Notes name each piece, what it is, whether as the file winds it, and the rule that decided
+///    (for a piece against the file, the physical rule that forced it).
 ///    - faces in contact: two faces overlapping in one plane with opposite front sides (a box
 ///      standing on a floor, two boxes face to face) are cut along the contact outline, and the
 ///      part of each that lies against a face of a closed piece (so inside solid matter) is
