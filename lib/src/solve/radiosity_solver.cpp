@@ -74,9 +74,8 @@ void RadiositySolver::setup() {
   info_.visibility = options_.visibility;
   if (info_.visibility == Visibility::automatic)
     info_.visibility = scene_.shape() == geometry::SceneShape::convex ? Visibility::unoccluded : Visibility::occluded;
-  if (info_.visibility == Visibility::unoccluded && scene_.shape() != geometry::SceneShape::convex)
-    throw std::invalid_argument("visibility: V = 1 (unoccluded) is exact on a convex scene only, and this scene is "
-                                "not proven convex; use auto or occluded");
+  if (const std::string why = visibility_problem(info_.visibility, scene_.shape()); !why.empty())
+    throw std::invalid_argument(why);
   if (options_.communicator && options_.solver.kind == SolverKind::lu)
     throw std::invalid_argument("solver: LU factors the whole matrix I - K_n on one process; with several processes "
                                 "use neumann, gmres or auto");
