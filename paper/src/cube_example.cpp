@@ -38,7 +38,7 @@ SolveOptions level_options(const CubeRunOptions& options, int level) {
   o.level = level;
   o.op = options.op;
   o.tighten_on_failed_check = options.tighten_on_failed_check;
-  o.solver = options.solver;  // tolerance <= 0: discretization_tolerance, per level
+  o.solver = options.solver;  // tolerance 0: discretization_tolerance, per level
   o.fold_reflectivity = true;  // K_n with rho (31) in its rows, as in the paper's tables
   o.communicator = options.communicator;
   return o;

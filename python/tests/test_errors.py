@@ -100,6 +100,16 @@ def test_solver_arguments(cube_arrays):
         panelrad.Solver(scene, level=0, eta=0.3)
     with pytest.raises(ValueError, match="accuracy"):
         panelrad.Solver(scene, level=0, accuracy=0.01)  # tighter than any measured margin
+    # The library's own checks (SolveOptions::validate), naming the keyword and the value.
+    for keywords, named in [({"tolerance": float("inf")}, "tolerance: .*got inf"),
+                            ({"tolerance": 0.0}, "tolerance: .*got 0"),
+                            ({"max_iterations": 0}, "max_iterations: .*got 0"),
+                            ({"method": "fast", "degree": 13}, "degree: .*got 13"),
+                            ({"method": "fast", "eta": 1.5}, "eta: .*got 1.5"),
+                            ({"method": "dense", "near": "quadrature", "mu": -1}, "mu: .*got -1"),
+                            ({"max_elements": 0, "level": None}, "max_elements: .*got 0")]:
+        with pytest.raises(ValueError, match=named):
+            panelrad.Solver(scene, **{"level": 0, **keywords})
     solver = panelrad.Solver(scene, level=1, method="dense")
     with pytest.raises(ValueError, match=r"E: expected shape \(48,\)"):
         solver.solve(np.ones(47))

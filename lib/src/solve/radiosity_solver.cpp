@@ -65,6 +65,7 @@ void RadiositySolver::say(const std::string& line) const {
 
 void RadiositySolver::setup() {
   stage_ = "reading the options";
+  options_.validate();
   const Index n0 = static_cast<Index>(scene_.mesh().triangles.size());
   info_.level = options_.level >= 0 ? options_.level : level_for_max_elements(n0, options_.max_elements);
   if (info_.level > 15) throw std::invalid_argument("levels: " + std::to_string(info_.level) + " is more than 15");
@@ -89,7 +90,7 @@ void RadiositySolver::setup() {
     info_.conditioning_reflectivity = rho_max;
     choose_parameters_and_plan();
   }
-  info_.tolerance = options_.solver.tolerance > 0 ? options_.solver.tolerance
+  info_.tolerance = options_.solver.tolerance > 0 ? options_.solver.tolerance  // 0: tied to h
                                                   : discretization_tolerance(info_.mesh_size, info_.diameter);
   build_operator();
 }

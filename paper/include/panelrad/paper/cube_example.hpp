@@ -20,7 +20,7 @@ struct CubeRunOptions {
   int max_level = 3;
   /// The operator of every level: method dense or fast, near rule, eta, M.
   OperatorOptions op;
-  /// solver.tolerance <= 0: tied to the discretization error per level (discretization_tolerance).
+  /// solver.tolerance 0: tied to the discretization error per level (discretization_tolerance).
   SolverOptions solver;
   /// Fast method: when the operator's self-check exceeds self_check_threshold(), tighten the
   /// parameters (tighten_parameters) and rebuild, until it passes or nothing is stricter
