@@ -56,8 +56,10 @@ struct CubeRow {
   int tightened = 0;                  ///< times the parameters were tightened after a failed check
 };
 
-/// Refuses (ResourceError with the estimate, memory_plan.hpp) before any work when a level
-/// min_level..max_level cannot fit: the cluster tree, the collocation, the operator and the
+/// Refuses (ResourceError) before any work a max_level whose n = 12 * 4^max_level elements exceed
+/// the 32-bit index (level 13 is the largest: geometry::level_size_problem), and, with the
+/// estimate (memory_plan.hpp), a level min_level..max_level that cannot fit: the cluster tree, the
+/// collocation, the operator and the
 /// solver of each level, with options.op, or with choose_parameters() per level when
 /// `automatic_parameters`. run_paper_cube calls it with its own options.
 /// Returns the estimates, one per level.
