@@ -66,7 +66,7 @@ void at_points(const RadiositySolver& solver, const FacetData& d, Eigen::VectorX
 // solutions by at most about 6e-8 rho/(1 - rho) ||u|| (1e-7 ||u|| here, rho <= 0.5) beside their
 // iteration errors.
 void expect_reuse_matches_one_shot(const SolveOptions& options, bool bit_identical) {
-  const Scene geometry_only(valid_cube());  // rho 0, E 1: only its surface is used
+  const Scene geometry_only(valid_cube());  // rho 0, E 0: only its surface is used
   const RadiositySolver solver(geometry_only, options);
   for (const FacetData& d : kData) {
     Eigen::VectorXd rho, E;
