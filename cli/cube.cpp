@@ -26,6 +26,8 @@ const char* kCubeUsage =
     "                     [--threads T] [--csv PATH]\n"
     "  Solves the paper's cube example (rho 0.5/0.4/0.3, u = x^2+y^2+z^2) for n = 12 * 4^l,\n"
     "  l = L0..L (default 0..3), and prints a table like the paper's Table 1 / Tables 2-4.\n"
+    "  L is at most 13 (n must have a 32-bit index), and every level must fit in memory: both are\n"
+    "  checked before level L0 is solved.\n"
     "  --tol auto (default) iterates until the iteration error is ~1e-5 h/diam, far below the\n"
     "  discretization error O(h).\n"
     "  --accuracy auto|manual: auto (the default) picks method, near rule, eta and M per level so\n"
@@ -62,8 +64,8 @@ void add_cube_options(CLI::App& app, CubeCommandLine& line) {
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);  // repeated: the last counts
   CubeRunOptions& o = line.o;
   app.add_option("--accuracy", line.accuracy)->type_name("auto|manual")->check(one_of({"auto", "manual"}));
-  app.add_option("--levels", o.max_level)->type_name("L")->transform(integer_in(0, 12));
-  app.add_option("--min-level", o.min_level)->type_name("L0")->transform(integer_in(0, 12));
+  app.add_option("--levels", o.max_level)->type_name("L")->transform(level_number());
+  app.add_option("--min-level", o.min_level)->type_name("L0")->transform(level_number());
   app.add_option_function<std::string>("--method", [&o](const std::string& v) { o.op.method = parse_operator_method(v); })
       ->type_name("dense|fast")
       ->check(one_of({"dense", "fast"}));

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <stdexcept>
 #include <utility>
 
@@ -52,6 +53,16 @@ std::string read_number(std::string& value, double lo, double hi) {
 CLI::Validator integer_in(int lo, int hi) {
   return CLI::Validator([lo, hi](std::string& value) { return read_integer(value, lo, hi); },
                         "", "integer_in");
+}
+
+CLI::Validator level_number() {
+  return CLI::Validator(
+      [](std::string& value) {
+        const std::string given = value;
+        if (read_integer(value, 0, std::numeric_limits<int>::max()).empty()) return std::string();
+        return "needs a level: an integer >= 0, got '" + given + "'";
+      },
+      "", "level_number");
 }
 
 CLI::Validator number_in(double lo, double hi) {

@@ -23,6 +23,11 @@ class UsageError : public std::runtime_error {
 /// CLI11's own conversion (strtoll with base 0, which would read "010" as octal) gets the same
 /// integer.
 CLI::Validator integer_in(int lo, int hi);
+/// --levels, --min-level: a refinement level, an integer >= 0 read as integer_in reads it. How
+/// large a level may be depends on the scene (n = 4^L n0 elements must have a 32-bit index, and
+/// fit in memory): the library refuses a larger one by that reason (geometry::level_size_problem,
+/// the memory plan), not a fixed bound here.
+CLI::Validator level_number();
 /// A finite number in [lo, hi], read with strtod. It is passed on as the exact hexadecimal form
 /// of that double, so CLI11's own conversion (strtold, then a second rounding to double) gets
 /// the same double bit for bit.

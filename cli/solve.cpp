@@ -117,7 +117,7 @@ void add_solve_options(CLI::App& app, SolveCommandLine& line) {
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);  // repeated: the last counts
   SolveOptions& o = line.o;
   app.add_option("SCENE", line.scene_path);  // checked after parsing, so an unknown option is said first
-  CLI::Option* levels = app.add_option("--levels", o.level)->type_name("L")->transform(integer_in(0, 12));
+  CLI::Option* levels = app.add_option("--levels", o.level)->type_name("L")->transform(level_number());
   CLI::Option* max_elements =
       app.add_option("--max-elements", o.max_elements)->type_name("N")->transform(integer_in(1, 1 << 30));
   levels->excludes(max_elements);

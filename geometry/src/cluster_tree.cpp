@@ -25,6 +25,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -192,6 +193,45 @@ double length(const Vec3& v) {
 
 constexpr int max_level = 15;  // n0 * 4^16 > 2^31 - 1 for every n0 >= 1
 
+/// The clusters on levels 0..level of n0 roots, n0 (4^(level+1) - 1) / 3, for level <= max_level
+/// (below 2^63).
+long long clusters_up_to(Index n0, int level) {
+  long long clusters = 0;
+  for (int l = 0; l <= level; ++l) clusters += static_cast<long long>(n0) << (2 * l);
+  return clusters;
+}
+
+/// n0 4^level: exact below 2^63, else as "about 1.45e+25" (from its logarithm: any level).
+std::string element_count(Index n0, int level) {
+  if (level <= 30 && std::bit_width(static_cast<unsigned long long>(n0)) + 2 * level < 63)
+    return std::to_string(static_cast<long long>(n0) << (2 * level));
+  const double lg = std::log10(static_cast<double>(n0)) + static_cast<double>(level) * std::log10(4.0);
+  const double exponent = std::floor(lg);
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "about %.3ge+%.0f", std::pow(10.0, lg - exponent), exponent);
+  return buf;
+}
+
+}  // namespace
+
+std::string level_size_problem(Index n0, int level) {
+  const long long index_max = std::numeric_limits<Index>::max();
+  const auto fits = [&](int l) { return l <= max_level && clusters_up_to(n0, l) <= index_max; };
+  if (n0 < 1 || level < 0 || fits(level)) return "";
+  int largest = 0;  // level 0 has n0 <= index_max clusters
+  while (fits(largest + 1)) ++largest;
+  std::ostringstream msg;
+  msg << "level " << level << " gives n = " << n0 << " * 4^" << level << " = " << element_count(n0, level)
+      << " elements";
+  const bool elements_fit = level <= max_level && (static_cast<long long>(n0) << (2 * level)) <= index_max;
+  if (elements_fit) msg << " in " << clusters_up_to(n0, level) << " clusters on all levels";
+  msg << ", more than the " << index_max << " that the 32-bit indices of the elements and clusters can number: level "
+      << largest << " is the largest for " << n0 << " triangles";
+  return msg.str();
+}
+
+namespace {
+
 /// n0, the number of level-0 triangles, after checking the level and the mesh's sizes.
 Index checked_root_count(const TriangleMesh& mesh, int finest_level, const std::string& name) {
   if (finest_level < 0)
@@ -207,18 +247,11 @@ Index checked_root_count(const TriangleMesh& mesh, int finest_level, const std::
 }
 
 /// Refuses a tree whose n = n0 4^L elements or whose clusters on all levels (< 4n/3) do not fit
-/// Index, and one whose estimated size exceeds memory_limit_bytes; before any allocation.
+/// Index (level_size_problem), and one whose estimated size exceeds memory_limit_bytes; before
+/// any allocation.
 void refuse_oversized_tree(Index n0, int finest_level, std::size_t memory_limit_bytes, const std::string& name) {
-  const long long index_max = std::numeric_limits<Index>::max();
-  long long clusters = 0;
-  for (int l = 0; l <= std::min(finest_level, max_level); ++l) clusters += static_cast<long long>(n0) << (2 * l);
-  if (finest_level > max_level || clusters > index_max) {
-    std::ostringstream msg;
-    msg << "cluster tree of " << name << ": level " << finest_level << " gives n = " << n0 << " * 4^"
-        << finest_level << " elements (" << std::ldexp(static_cast<double>(n0), 2 * finest_level)
-        << "), beyond the 32-bit index limit of " << index_max << " clusters";
-    throw MeshError(msg.str());
-  }
+  if (const std::string problem = level_size_problem(n0, finest_level); !problem.empty())
+    throw MeshError("cluster tree of " + name + ": " + problem);
   const std::size_t estimate = ClusterTree::estimate_bytes(n0, finest_level);
   if (estimate > memory_limit_bytes) {
     std::ostringstream msg;

@@ -1,3 +1,4 @@
+#include <panelrad/geometry/cluster_tree.hpp>
 #include <panelrad/operator/auto_parameters.hpp>
 #include <panelrad/paper/cube_example.hpp>
 #include <panelrad/operator/dense_operator.hpp>
@@ -16,6 +17,11 @@ std::vector<LevelMemoryEstimate> check_paper_cube_fits(const CubeRunOptions& opt
   if (options.min_level < 0 || options.max_level < options.min_level)
     throw std::invalid_argument("levels: need 0 <= min_level <= max_level");
   const Scene scene = make_paper_cube_scene();
+  // The finest level first: one beyond the 32-bit element index is refused by that count before
+  // any level is planned (however many levels were asked for).
+  const auto n0 = static_cast<Index>(scene.mesh().triangles.size());
+  if (const std::string problem = geometry::level_size_problem(n0, options.max_level); !problem.empty())
+    throw ResourceError("cube " + problem);
   std::vector<PlannedLevel> planned;
   for (int level = options.min_level; level <= options.max_level; ++level) {
     OperatorOptions op = automatic_parameters ? choose_parameters(problem_size(scene.mesh(), level)) : options.op;
@@ -38,7 +44,7 @@ SolveOptions level_options(const CubeRunOptions& options, int level) {
   o.level = level;
   o.op = options.op;
   o.tighten_on_failed_check = options.tighten_on_failed_check;
-  o.solver = options.solver;  // tolerance <= 0: discretization_tolerance, per level
+  o.solver = options.solver;  // tolerance 0: discretization_tolerance, per level
   o.fold_reflectivity = true;  // K_n with rho (31) in its rows, as in the paper's tables
   o.communicator = options.communicator;
   return o;

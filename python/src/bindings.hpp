@@ -6,7 +6,7 @@ namespace panelrad::python {
 
 namespace py = pybind11;
 
-void bind_errors(py::module_& m);     // errors.cpp: panelrad.Error and its subclasses
+void bind_errors(py::module_& m);     // errors.cpp: panelrad.Error, the root of every exception raised
 void bind_scene(py::module_& m);      // scene_binding.cpp: Scene, load_scene, paper_cube
 void bind_operator(py::module_& m);   // operator_binding.cpp: Operator (H or K_n as a LinearOperator)
 void bind_solver(py::module_& m);     // solver_binding.cpp: Solver, SolveResult

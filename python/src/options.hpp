@@ -12,7 +12,7 @@ namespace panelrad::python {
 namespace py = pybind11;
 
 struct SolverArguments {
-  std::optional<int> level;           ///< None: the largest with n <= max_elements
+  std::optional<int> level;           ///< None: the largest with n <= max_elements (-1)
   long max_elements = 20000;
   double accuracy = 0.05;             ///< auto: the far field's error / the discretization error
   std::string method = "auto";        ///< auto | dense | fast
@@ -22,14 +22,15 @@ struct SolverArguments {
   std::optional<int> mu;              ///< quadrature near rule: subdivision levels (section 4.2)
   std::string visibility = "auto";    ///< auto | occluded
   std::string solver = "auto";        ///< auto | neumann | gmres | lu
-  std::optional<double> tolerance;    ///< None: tied to the discretization error
+  std::optional<double> tolerance;    ///< None: tied to the discretization error (0)
   int max_iterations = 1000;
   std::optional<int> threads;         ///< None: keep the process's setting
   py::object progress = py::none();   ///< callable(str) or None
 };
 
-/// SolveOptions from the arguments (ValueError naming the argument for a bad value); sets the
-/// thread count when given (process-wide). The progress callback checks Python's signals.
+/// SolveOptions from the arguments, checked by SolveOptions::validate (ArgumentError naming the
+/// argument and its value); sets the thread count when given (process-wide), once they pass. The
+/// progress callback checks Python's signals.
 SolveOptions make_solve_options(const SolverArguments& a);
 
 /// The keyword arguments shared by Solver and solve_scene, declared once.

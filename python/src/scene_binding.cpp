@@ -41,7 +41,7 @@ std::string fspath(py::handle path) {
 
 namespace {
 
-enum class Quantity { reflectivity, emissivity };
+enum class Quantity { reflectivity, emission };
 
 // values: a number (every facet), an array of num_facets (per facet), or, when `channel` is None,
 // an array of shape (channels, num_facets). `channel` None: every channel.
@@ -115,7 +115,7 @@ std::shared_ptr<Scene> scene_from_arrays(py::handle vertices, py::handle triangl
     scene = std::make_shared<Scene>(std::move(mesh), std::move(channels));
   }
   set_values(*scene, Quantity::reflectivity, rho, py::none());
-  set_values(*scene, Quantity::emissivity, E, py::none());
+  set_values(*scene, Quantity::emission, E, py::none());
   return scene;
 }
 
@@ -135,21 +135,23 @@ void bind_scene(py::module_& m) {
 A polyhedral scene of the radiosity equation u - K u = E (1): validated planar polygons with, in
 each channel, the reflectivity rho (0 <= rho < 1) and the emission E (>= 0) per input facet.
 
-Scene(vertices, triangles, rho=0.0, E=1.0, facets=None, channels=("value",), source="arrays")
+Scene(vertices, triangles, rho=0.0, E=0.0, facets=None, channels=("value",), source="arrays")
 
 vertices: (N, 3) real array; triangles: (M, 3) integer array of vertex indices; facets: (M,)
 integer array, the input facet (maximal planar polygon) of each triangle, or None (each triangle
-its own facet). rho and E: a number, a (num_facets,) array, or a (channels, num_facets) array.
+its own facet). rho and E: a number, a (num_facets,) array, or a (channels, num_facets) array; by
+default nothing reflects and nothing emits (rho = 0, E = 0): give E where the light comes from.
 The mesh is validated exactly as the C++ Scene does (convex: V = 1, the paper's setting; or a
 general scene whose visibility V is computed): an invalid mesh, a NaN or infinite vertex included,
 raises MeshError with the validator's message. Values of rho or E that break the rule
-(rho outside [0, 1), E negative, not finite, subnormal) raise ValueError naming the facet and
-channel. Arrays of any strides are read in place (no extra copy); a wrong shape is a ValueError,
-a wrong dtype (not a real number, or not an integer for indices) a TypeError.
+(rho outside [0, 1), E negative, not finite, subnormal) raise ArgumentError (a ValueError) naming
+the facet and channel. Arrays of any strides are read in place (no extra copy); a wrong shape is
+an ArgumentError, a wrong dtype (not a real number, or not an integer for indices) an
+ArgumentTypeError (a TypeError).
 )doc");
   scene
       .def(py::init(&scene_from_arrays), py::arg("vertices"), py::arg("triangles"), py::arg("rho") = 0.0,
-           py::arg("E") = 1.0, py::kw_only(), py::arg("facets") = py::none(),
+           py::arg("E") = 0.0, py::kw_only(), py::arg("facets") = py::none(),
            py::arg("channels") = std::vector<std::string>{"value"}, py::arg("source") = "arrays")
       .def_property_readonly("num_facets", &Scene::num_facets)
       .def_property_readonly("num_triangles", [](const Scene& s) { return s.mesh().triangles.size(); })
@@ -193,17 +195,18 @@ a wrong dtype (not a real number, or not an integer for indices) a TypeError.
           [](Scene& s, py::handle rho, py::handle channel) { set_values(s, Quantity::reflectivity, rho, channel); },
           py::arg("rho"), py::arg("channel") = py::none(),
           "rho per facet: a number, (num_facets,) or (channels, num_facets); channel None sets every channel. "
-          "ValueError naming the facet, channel and rule for a value outside [0, 1).")
+          "ArgumentError naming the facet, channel and rule for a value outside [0, 1).")
       .def(
-          "set_emissivity",
-          [](Scene& s, py::handle e, py::handle channel) { set_values(s, Quantity::emissivity, e, channel); },
+          "set_emission",
+          [](Scene& s, py::handle e, py::handle channel) { set_values(s, Quantity::emission, e, channel); },
           py::arg("E"), py::arg("channel") = py::none(),
-          "E per facet, as set_reflectivity; ValueError for E negative, not finite or subnormal.")
+          "The emission E per facet (the light a surface gives off itself, the E of u - K u = E), as "
+          "set_reflectivity; ArgumentError for E negative, not finite or subnormal.")
       .def(
           "reflectivity", [](const Scene& s, py::handle c) { return facet_values(s, Quantity::reflectivity, c); },
           py::arg("channel") = 0, "rho per facet of the channel (a copy), or None when given as a function.")
       .def(
-          "emissivity", [](const Scene& s, py::handle c) { return facet_values(s, Quantity::emissivity, c); },
+          "emission", [](const Scene& s, py::handle c) { return facet_values(s, Quantity::emission, c); },
           py::arg("channel") = 0, "E per facet of the channel (a copy), or None when manufactured.")
       .def("__repr__", &scene_repr);
 

@@ -287,7 +287,7 @@ The scene must not be modified from another thread while a solve runs.
           },
           py::arg("rho"), py::arg("E"),
           "Solves (I - diag(rho) H) u = E for rho, E per element, each of shape (n,); rho in [0, 1) "
-          "(ValueError otherwise), E finite.")
+          "(ArgumentError otherwise), E finite.")
       .def("__repr__", [](const SolverHolder& h) {
         const auto& i = h.solver->info();
         return "<panelrad.Solver: level " + std::to_string(i.level) + ", n " + std::to_string(i.n) + ", " +

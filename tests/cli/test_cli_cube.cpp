@@ -75,6 +75,26 @@ TEST(CliCube, DenseLevelThatCannotFitIsRefusedBeforeWork) {
   EXPECT_NE(r.output.find("needs"), std::string::npos) << r.output;
 }
 
+// n = 12 * 4^14 = 3,221,225,472 elements: more than a 32-bit element index numbers. Refused by
+// that reason at once (every level is checked before level 0 is solved), status 1, automatic and
+// manual parameters alike; level 13 (805,306,368 elements) is numbered, and refused by memory.
+TEST(CliCube, LevelBeyondTheElementIndexIsRefusedByItsCount) {
+  for (const std::string& args : {std::string("cube --levels 14"), std::string("cube --min-level 15 --levels 15"),
+                                  std::string("cube --method fast --eta 0.5 --degree 6 --levels 14"),
+                                  std::string("cube --levels 1000000")}) {
+    const CliRun r = run(args);
+    EXPECT_EQ(r.status, 1) << args << "\n" << r.output;
+    EXPECT_CONTAINS(r.output, "12 * 4^1");
+    EXPECT_CONTAINS(r.output, "2147483647");
+    EXPECT_EQ(r.output.find("must be positive"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("Cube example"), std::string::npos) << "solved before the refusal:\n" << r.output;
+  }
+  const CliRun r13 = run("cube --min-level 13 --levels 13");
+  EXPECT_EQ(r13.status, 1) << r13.output;
+  EXPECT_CONTAINS(r13.output, "805306368");
+  EXPECT_CONTAINS(r13.output, "needs");
+}
+
 TEST(CliCube, UnwritableCsvIsAnErrorAndLeavesNoFile) {
   const CliRun r = run("cube --levels 0 --csv /nonexistent-dir/x.csv");
   EXPECT_EQ(r.status, 1) << r.output;

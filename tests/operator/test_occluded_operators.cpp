@@ -262,6 +262,32 @@ TEST(OccludedSolve, UnoccludedAndManufacturedAreRefusedOnGeneralScenes) {
   EXPECT_THROW((void)make_operator(Collocation(scene, 0), dense_options(), Visibility::automatic), std::invalid_argument);
 }
 
+// The operator factory refuses V = 1 on a general scene as the solver does, for either method:
+// on the room with a box it would give K entries < 0 (WithoutVisibilityEntriesTurnNegative).
+TEST(OccludedSolve, OperatorFactoryRefusesUnoccludedOnGeneralScenes) {
+  const Scene scene = general_scene(testing::room_with_box(), facet_rho, [](Index) { return 1.0; });
+  const Collocation col(scene, 1);
+  ASSERT_EQ(scene.shape(), SceneShape::general);
+  for (const OperatorOptions& options : {dense_options(), fast_options(0.5, 4)}) {
+    try {
+      (void)make_operator(col, options, Visibility::unoccluded);
+      ADD_FAILURE() << "make_operator built V = 1 on a non-convex scene (" << to_string(options.method) << ")";
+    } catch (const std::invalid_argument& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("V = 1"), std::string::npos) << what;
+      EXPECT_NE(what.find("convex"), std::string::npos) << what;
+      EXPECT_NE(what.find("occluded"), std::string::npos) << what;  // what to use instead
+    }
+  }
+  // The row weights of H (with_row_weights) keep the scene's shape, and so the refusal.
+  EXPECT_THROW((void)make_operator(col.with_row_weights(Eigen::VectorXd::Ones(col.size())), dense_options(),
+                                   Visibility::unoccluded),
+               std::invalid_argument);
+  // The default visibility of make_operator is no way around it.
+  EXPECT_THROW((void)make_operator(col, dense_options()), std::invalid_argument);
+  EXPECT_NO_THROW((void)make_operator(col, dense_options(), Visibility::occluded));
+}
+
 // The fast product against the dense one with visibility, at every level up to n = 1536 (the dense
 // matrix takes 19 MB there): max_i |(K_f v - K v)_i| / max_i (K|v|)_i is what the self-check
 // estimates on sampled rows; over all rows it may be somewhat larger than the sampled value, so the

@@ -56,12 +56,15 @@ TEST(Scene, ChannelsAreNamedOnceEach) {
   }
 }
 
-// Defaults rho = 0, E = 1; per-facet values read back at any point of their facet, per channel.
+// Defaults rho = 0 and E = 0 (no surface emits unless given); per-facet values read back at any
+// point of their facet, per channel.
 TEST(Scene, PerFacetDataPerChannel) {
   Scene scene(valid_cube(), {"R", "G"});
   const Vec3 P = point_on_facet(scene, 3);
   EXPECT_EQ(scene.reflectivity(P, 3, 1), 0.0);
-  EXPECT_EQ(scene.emissivity(P, 3, 1), 1.0);
+  EXPECT_EQ(scene.emissivity(P, 3, 1), 0.0);
+  EXPECT_EQ(scene.facet_emissivity(0), std::vector<double>(6, 0.0));
+  EXPECT_EQ(scene.facet_emissivity(1), std::vector<double>(6, 0.0));
   scene.set_reflectivity({0.1, 0.2, 0.3, 0.4, 0.5, 0.6}, 1);
   scene.set_emissivity({0, 0, 0, 2.5, 0, 0}, 0);
   EXPECT_EQ(scene.reflectivity(P, 3, 1), 0.4);
@@ -88,7 +91,7 @@ TEST(Scene, OneRuleForPerFacetData) {
     expect_names(refusal([&] { scene.set_emissivity(e, 0); }), {"emission E", "facet 2", "channel R", emission_problem(bad)});
   }
   EXPECT_EQ(scene.facet_reflectivity(1), std::vector<double>(6, 0.0));
-  EXPECT_EQ(scene.facet_emissivity(0), std::vector<double>(6, 1.0));
+  EXPECT_EQ(scene.facet_emissivity(0), std::vector<double>(6, 0.0));  // the default, kept
   // The rule itself: 0 <= rho < 1 (paper (7)); E finite, >= 0, 0 or within [1e-100, 1e100].
   EXPECT_EQ(reflectivity_problem(0.0), "");
   EXPECT_EQ(reflectivity_problem(std::nextafter(1.0, 0.0)), "");

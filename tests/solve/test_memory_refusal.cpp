@@ -9,7 +9,10 @@
 #include <panelrad/geometry/builtin_scenes.hpp>
 #include <panelrad/geometry/cluster_tree.hpp>
 #include <panelrad/geometry/validation.hpp>
+#include <panelrad/operator/auto_parameters.hpp>
 #include <panelrad/solve/memory_plan.hpp>
+#include <panelrad/solve/radiosity_solver.hpp>
+#include <panelrad/solve/scene_solver.hpp>
 #include <panelrad/support/resources.hpp>
 #include <panelrad/scene/scene.hpp>
 
@@ -20,6 +23,7 @@
 #include <iostream>
 #include <limits>
 #include <string>
+#include <utility>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -354,6 +358,35 @@ TEST(LevelMemoryEstimate, RefusalNamesTheLevelTheEstimateAndTheLimit) {
   EXPECT_NE(msg.find("before any work"), std::string::npos) << msg;
   small.address_space = levels[1].total() / 9 * 10 + 10;  // fits within 90%
   EXPECT_NO_THROW(refuse_levels_that_cannot_fit(levels, "cube ", small));
+}
+
+// A level whose element count n = 4^L n0 exceeds the 32-bit element index is refused by that
+// reason, before any work, by every entry that takes a level: the problem's size (which the
+// automatic parameters and the memory plan start from), the solver object and solve_scene. The
+// paper's cube (n0 = 12) holds level 13 at most: 12 * 4^14 = 3,221,225,472 > 2^31 - 1.
+TEST(LevelMemoryEstimate, LevelBeyondTheElementIndexIsRefusedByItsCount) {
+  const Scene cube = constant_cube();
+  const auto expect_count_named = [](const std::string& msg, int level, const std::string& n) {
+    EXPECT_NE(msg.find("level " + std::to_string(level)), std::string::npos) << msg;
+    EXPECT_NE(msg.find("12 * 4^" + std::to_string(level)), std::string::npos) << msg;
+    EXPECT_NE(msg.find(n), std::string::npos) << msg;
+    EXPECT_NE(msg.find("2147483647"), std::string::npos) << msg;  // the largest 32-bit index
+    EXPECT_NE(msg.find("level 13"), std::string::npos) << msg;    // the largest level that has one
+    EXPECT_EQ(msg.find("must be positive"), std::string::npos) << msg;
+  };
+  for (const auto& [level, n] : std::vector<std::pair<int, std::string>>{
+           {14, "3221225472"}, {15, "12884901888"}, {16, "51539607552"}, {40, "1.45"}}) {
+    expect_count_named(message_of<ResourceError>([&] { (void)problem_size(cube.mesh(), level); }), level, n);
+    SolveOptions o;
+    o.level = level;
+    int lines = 0;
+    o.progress = [&lines](const std::string&) { ++lines; };
+    expect_count_named(message_of<ResourceError>([&] { RadiositySolver solver(cube, o); }), level, n);
+    expect_count_named(message_of<ResourceError>([&] { (void)solve_scene(cube, o); }), level, n);
+    EXPECT_EQ(lines, 0) << "level " << level << ": refused before any work";
+  }
+  // Level 13 has its 805,306,368 elements numbered: refused, if at all, by memory.
+  EXPECT_EQ(problem_size(cube.mesh(), 13).n, 805306368);
 }
 
 // An allocation failure inside a stage becomes a ResourceError naming the stage, n and the size.

@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -65,7 +66,7 @@ void at_points(const RadiositySolver& solver, const FacetData& d, Eigen::VectorX
 // solutions by at most about 6e-8 rho/(1 - rho) ||u|| (1e-7 ||u|| here, rho <= 0.5) beside their
 // iteration errors.
 void expect_reuse_matches_one_shot(const SolveOptions& options, bool bit_identical) {
-  const Scene geometry_only(valid_cube());  // rho 0, E 1: only its surface is used
+  const Scene geometry_only(valid_cube());  // rho 0, E 0: only its surface is used
   const RadiositySolver solver(geometry_only, options);
   for (const FacetData& d : kData) {
     Eigen::VectorXd rho, E;
@@ -313,6 +314,44 @@ using testing::expect_names;
 using testing::refusal;
 
 }  // namespace
+
+// Every option is checked by SolveOptions::validate before any work (no progress line), by the
+// solver object and by solve_scene alike, the message naming the option and its value.
+TEST(RadiositySolver, BadOptionsAreRefusedByNameBeforeAnyWork) {
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  struct Bad {
+    std::function<void(SolveOptions&)> set;
+    std::vector<std::string> names;
+  };
+  const std::vector<Bad> bad = {
+      {[](SolveOptions& o) { o.max_elements = 0; }, {"max_elements", "0"}},
+      {[](SolveOptions& o) { o.level = -2; }, {"level", "-2"}},
+      {[](SolveOptions& o) { o.accuracy = 0.01; }, {"accuracy", "0.01", "0.05"}},
+      {[nan](SolveOptions& o) { o.accuracy = nan; }, {"accuracy", "nan"}},
+      {[](SolveOptions& o) { o.op.method = OperatorMethod::fast; o.op.eta = 1.5; }, {"eta", "1.5"}},
+      {[](SolveOptions& o) { o.op.method = OperatorMethod::fast; o.op.degree = 13; }, {"degree", "13"}},
+      {[](SolveOptions& o) { o.op.method = OperatorMethod::dense; o.op.near.mu = -1; }, {"mu", "-1"}},
+      {[inf](SolveOptions& o) { o.solver.tolerance = inf; }, {"tolerance", "inf"}},
+      {[nan](SolveOptions& o) { o.solver.tolerance = nan; }, {"tolerance", "nan"}},
+      {[](SolveOptions& o) { o.solver.tolerance = -1e-8; }, {"tolerance", "-1e-08"}},
+      {[](SolveOptions& o) { o.solver.max_iterations = 0; }, {"max_iterations", "0"}},
+      {[](SolveOptions& o) { o.solver.gmres_restart = 0; }, {"gmres_restart", "0"}},
+  };
+  const Scene scene = scalar_scene(kData[0]);
+  for (const Bad& b : bad) {
+    SolveOptions o;
+    o.level = 1;
+    int lines = 0;
+    o.progress = [&lines](const std::string&) { ++lines; };
+    b.set(o);
+    expect_names(refusal([&] { RadiositySolver solver(scene, o); }), b.names);
+    expect_names(refusal([&] { (void)solve_scene(scene, o); }), b.names);
+    EXPECT_EQ(lines, 0) << b.names[0] << ": refused before any work";
+  }
+  SolveOptions tied;  // the defaults: tolerance 0, tied to the discretization error; level -1
+  tied.max_elements = 200;
+  EXPECT_NO_THROW(RadiositySolver(scene, tied));
+}
 
 // The one rule for functions where they are evaluated: at the collocation points (per-facet data:
 // tests/scene/test_scene.cpp).

@@ -3,7 +3,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <functional>
+#include <limits>
 #include <random>
+#include <string>
+#include <vector>
 
 namespace {
 
@@ -113,6 +118,67 @@ TEST(Solvers, BadRightHandSideIsRejected) {
   F[2] = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(panelrad::solve_neumann(K, F, {}), std::invalid_argument);
   EXPECT_THROW(panelrad::parse_solver("cholesky"), std::invalid_argument);
+}
+
+// The iteration's options are checked before the first product, by every entry, naming the
+// option and its value: a tolerance that is not finite and positive (inf would report convergence
+// at once), no iteration allowed, a GMRES restart of 0.
+TEST(Solvers, BadOptionsAreRefusedByName) {
+  const MatrixOperator K(row_stochastic(5, 0.3, 2));
+  const Eigen::VectorXd E = Eigen::VectorXd::Ones(5);
+  const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
+  struct Bad {
+    panelrad::SolverOptions options;
+    std::string names;
+  };
+  std::vector<Bad> bad;
+  for (const double t : {inf, -inf, nan, 0.0, -1e-8}) {
+    panelrad::SolverOptions o;
+    o.tolerance = t;
+    char shown[32];
+    std::snprintf(shown, sizeof shown, "%g", t);
+    bad.push_back({o, std::string("tolerance ") + shown});
+  }
+  for (const int m : {0, -3}) {
+    panelrad::SolverOptions o;
+    o.max_iterations = m;
+    bad.push_back({o, "max_iterations " + std::to_string(m)});
+  }
+  {
+    panelrad::SolverOptions o;
+    o.gmres_restart = 0;
+    bad.push_back({o, "gmres_restart 0"});
+  }
+  for (const Bad& b : bad) {
+    for (const panelrad::SolverKind kind :
+         {panelrad::SolverKind::automatic, panelrad::SolverKind::neumann, panelrad::SolverKind::gmres}) {
+      panelrad::SolverOptions o = b.options;
+      o.kind = kind;
+      int products = 0;
+      o.progress = [&products](int, double) { ++products; };
+      const std::vector<std::function<void()>> entries = {
+          [&] { (void)panelrad::solve(K, E, o, 0.3); },
+          [&] { (void)panelrad::solve_neumann(K, E, o); },
+          [&] { (void)panelrad::solve_gmres(K, E, o, 0.3); },
+          [&] { (void)panelrad::NeumannIteration(E, o); },
+      };
+      for (std::size_t k = 0; k < entries.size(); ++k) {
+        try {
+          entries[k]();
+          ADD_FAILURE() << b.names << " accepted by entry " << k << " (kind " << panelrad::to_string(kind) << ")";
+        } catch (const std::invalid_argument& e) {
+          const std::string what = e.what();
+          const std::string name = b.names.substr(0, b.names.find(' '));
+          const std::string value = b.names.substr(b.names.find(' ') + 1);
+          EXPECT_NE(what.find(name), std::string::npos) << what;
+          EXPECT_NE(what.find(value), std::string::npos) << what << " lacks " << value;
+        }
+      }
+      EXPECT_EQ(products, 0) << b.names << ": refused before the first product";
+    }
+  }
+  // One rule for every kind: a restart of 0 is refused by Neumann too (above); the defaults pass.
+  EXPECT_NO_THROW((void)panelrad::solve_neumann(K, E, panelrad::SolverOptions{}));
 }
 
 TEST(Solvers, LuNeedsTheDenseOperator) {

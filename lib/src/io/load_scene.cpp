@@ -17,6 +17,7 @@ Scene load_scene(const std::string& path, const LoadOptions& options) {
   geometry::TriangleMesh mesh = builtin ? geometry::make_builtin(path.substr(8)) : geometry::read_mesh(path, &notes, options.read);
   geometry::ValidatedMesh validated = geometry::validate_mesh(std::move(mesh), &notes);
   Scene scene(std::move(validated));
+  scene.set_emissivity(1.0);  // a mesh alone: every facet emits 1 (LoadOptions::geometry_only)
   for (std::string& note : notes) scene.add_note(std::move(note));
   return scene;
 }

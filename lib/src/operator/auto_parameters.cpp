@@ -1,11 +1,14 @@
 #include <panelrad/operator/auto_parameters.hpp>
 
 #include <panelrad/geometry/bounding_box.hpp>
+#include <panelrad/geometry/cluster_tree.hpp>
 #include <panelrad/operator/far_field.hpp>
+#include <panelrad/support/error.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -66,9 +69,13 @@ double ProblemSize::equivalent_level() const { return std::log2(kCubeRelativeH0 
 ProblemSize problem_size(const geometry::TriangleMesh& mesh, int level) {
   if (level < 0) throw std::invalid_argument("problem_size: level must be >= 0, got " + std::to_string(level));
   if (mesh.triangles.empty()) throw std::invalid_argument("problem_size: empty mesh '" + mesh.source + "'");
-  if (level > 30) throw std::invalid_argument("problem_size: level " + std::to_string(level) + " is too large");
+  if (mesh.triangles.size() > static_cast<std::size_t>(std::numeric_limits<geometry::Index>::max()))
+    throw ResourceError(mesh.source + ": " + std::to_string(mesh.triangles.size()) +
+                        " triangles, more than 32-bit indices can number");
   ProblemSize s;
   s.roots = static_cast<geometry::Index>(mesh.triangles.size());
+  if (const std::string problem = geometry::level_size_problem(s.roots, level); !problem.empty())
+    throw ResourceError(mesh.source + ": " + problem);
   s.n = s.roots << (2 * level);
   double longest = 0;
   for (const auto& t : mesh.triangles)

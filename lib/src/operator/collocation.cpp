@@ -30,6 +30,7 @@ Collocation::Collocation(const Scene& scene, int level, std::size_t channel) {
                                              ? geometry::PlaneGrouping::within_rounding
                                              : geometry::PlaneGrouping::exact;
   tree_ = std::make_shared<const geometry::ClusterTree>(scene.mesh(), level, available_memory_bytes(), planes);
+  shape_ = scene.shape();
   tree_s_ = clock.seconds();
   clock.restart();
   const Index n = tree_->num_elements();
@@ -74,6 +75,7 @@ Collocation Collocation::with_row_weights(Eigen::VectorXd weights) const {
       throw std::invalid_argument("with_row_weights: weight " + std::to_string(i) + " is not finite and >= 0");
   Collocation c;
   c.tree_ = tree_;
+  c.shape_ = shape_;
   c.rho_ = std::move(weights);
   c.E_ = E_;
   c.true_u_ = true_u_;

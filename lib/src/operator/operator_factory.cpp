@@ -38,6 +38,18 @@ Visibility parse_visibility(const std::string& name) {
   throw std::invalid_argument("visibility '" + name + "' is not auto, unoccluded or occluded");
 }
 
+std::string visibility_problem(Visibility visibility, geometry::SceneShape shape) {
+  if (visibility == Visibility::automatic)
+    return "visibility 'auto' is not an operator's: unoccluded or occluded (the solver resolves auto from the "
+           "scene's shape)";
+  if (visibility == Visibility::unoccluded && shape != geometry::SceneShape::convex)
+    return "visibility unoccluded (V = 1 for every pair of points) is the paper's assumption of a convex surface, "
+           "exact only there, and this scene is not proven convex (" + std::string(geometry::to_string(shape)) +
+           "): its faces hide parts of it from others, which V = 1 would count as seen (entries of K_n < 0 where a "
+           "face is seen from its back); use occluded: V computed, as the solver's auto does on such a scene";
+  return "";
+}
+
 VisibilityWork visibility_work(const RadiosityOperator& op) {
   VisibilityWork w;
   if (const auto* fast = dynamic_cast<const FastOperator*>(&op)) {
@@ -78,11 +90,11 @@ bool single_precision_far_field(Visibility) { return true; }
 std::unique_ptr<RadiosityOperator> make_operator(const Collocation& collocation, const OperatorOptions& options,
                                                  Visibility visibility, const SetupProgress& progress,
                                                  const RowRange& rows, int probe_samples) {
-  // unoccluded: V = 1, exact on a convex surface (operator_factory.hpp); both operators integrate
-  // G without a visibility factor and do no visibility work. occluded: V from the scene's faces.
-  if (visibility == Visibility::automatic)
-    throw std::invalid_argument("make_operator: visibility 'auto' is not an operator: unoccluded or occluded "
-                                "(the solver resolves auto from the scene's shape)");
+  // unoccluded: V = 1, exact on a convex surface only (operator_factory.hpp); both operators
+  // integrate G without a visibility factor and do no visibility work. occluded: V from the
+  // scene's faces.
+  if (const std::string why = visibility_problem(visibility, collocation.shape()); !why.empty())
+    throw std::invalid_argument("make_operator: " + why);
   const std::shared_ptr<const geometry::Occluders> occluders =
       visibility == Visibility::occluded ? scene_occluders(collocation.tree()) : nullptr;
   switch (options.method) {

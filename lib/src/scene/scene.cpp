@@ -123,9 +123,9 @@ Scene::Scene(geometry::ValidatedMesh mesh, std::vector<std::string> channels)
   }
   closed_ = every_edge_shared_twice(mesh_);
   data_.resize(channels_.size());
-  for (Channel& ch : data_) {
+  for (Channel& ch : data_) {  // nothing reflects and nothing emits until given
     ch.rho_facet.assign(static_cast<std::size_t>(mesh_.num_facets), 0.0);
-    ch.e_facet.assign(static_cast<std::size_t>(mesh_.num_facets), 1.0);
+    ch.e_facet.assign(static_cast<std::size_t>(mesh_.num_facets), 0.0);
   }
 }
 

@@ -137,6 +137,14 @@ LevelMemoryEstimate estimate_level_memory(const geometry::TriangleMesh& mesh, in
 
 void refuse_levels_that_cannot_fit(const std::vector<LevelMemoryEstimate>& levels, const std::string& what,
                                    const MemoryAvailability& available) {
+  for (const LevelMemoryEstimate& e : levels) {
+    // n0 = n / 4^level, exact (a power of two apart); taken as 1 should n be beyond even a long
+    // double (a level in the thousands), which is refused all the same.
+    const long double n0 = std::ldexp(e.n, -2 * std::min(e.level, 1 << 20));
+    const Index roots = n0 >= 1 && n0 <= std::numeric_limits<Index>::max() ? static_cast<Index>(n0) : 1;
+    if (const std::string problem = geometry::level_size_problem(roots, e.level); !problem.empty())
+      throw ResourceError(what + problem);
+  }
   const std::size_t avail = available.bytes();
   for (const LevelMemoryEstimate& e : levels) {
     if (e.total() <= avail / 10 * 9) continue;

@@ -1,3 +1,4 @@
+#include <panelrad/geometry/cluster_tree.hpp>
 #include <panelrad/operator/auto_parameters.hpp>
 #include <panelrad/solve/radiosity_solver.hpp>
 #include <panelrad/scene/errors.hpp>
@@ -42,6 +43,12 @@ std::string fmt(const char* format, double a, double b = 0) {
   return buf;
 }
 
+/// The scene as the refusals name it: its source, or "scene".
+std::string scene_name(const Scene& scene) {
+  const std::string& source = scene.mesh().source;
+  return source.empty() ? std::string("scene") : source;
+}
+
 std::string number(double v) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.17g", v);
@@ -65,18 +72,19 @@ void RadiositySolver::say(const std::string& line) const {
 
 void RadiositySolver::setup() {
   stage_ = "reading the options";
+  options_.validate();
   const Index n0 = static_cast<Index>(scene_.mesh().triangles.size());
   info_.level = options_.level >= 0 ? options_.level : level_for_max_elements(n0, options_.max_elements);
-  if (info_.level > 15) throw std::invalid_argument("levels: " + std::to_string(info_.level) + " is more than 15");
+  if (const std::string problem = geometry::level_size_problem(n0, info_.level); !problem.empty())
+    throw ResourceError(scene_name(scene_) + ": " + problem);
   if (options_.fold_reflectivity && scene_.num_channels() != 1)
     throw std::invalid_argument("fold_reflectivity: the operator takes one channel's rho, the scene has " +
                                 std::to_string(scene_.num_channels()));
   info_.visibility = options_.visibility;
   if (info_.visibility == Visibility::automatic)
     info_.visibility = scene_.shape() == geometry::SceneShape::convex ? Visibility::unoccluded : Visibility::occluded;
-  if (info_.visibility == Visibility::unoccluded && scene_.shape() != geometry::SceneShape::convex)
-    throw std::invalid_argument("visibility: V = 1 (unoccluded) is exact on a convex scene only, and this scene is "
-                                "not proven convex; use auto or occluded");
+  if (const std::string why = visibility_problem(info_.visibility, scene_.shape()); !why.empty())
+    throw std::invalid_argument(why);
   if (options_.communicator && options_.solver.kind == SolverKind::lu)
     throw std::invalid_argument("solver: LU factors the whole matrix I - K_n on one process; with several processes "
                                 "use neumann, gmres or auto");
@@ -90,7 +98,7 @@ void RadiositySolver::setup() {
     info_.conditioning_reflectivity = rho_max;
     choose_parameters_and_plan();
   }
-  info_.tolerance = options_.solver.tolerance > 0 ? options_.solver.tolerance
+  info_.tolerance = options_.solver.tolerance > 0 ? options_.solver.tolerance  // 0: tied to h
                                                   : discretization_tolerance(info_.mesh_size, info_.diameter);
   build_operator();
 }
@@ -116,8 +124,7 @@ void RadiositySolver::choose_parameters_and_plan() {
   SolverOptions planned_solver;
   planned_solver.kind = options_.solver.kind;
   info_.memory = estimate_level_memory(scene_.mesh(), info_.level, info_.parameters, planned_solver, rho_max, memory);
-  const std::string& source = scene_.mesh().source;
-  refuse_levels_that_cannot_fit({info_.memory}, (source.empty() ? std::string("scene") : source) + ": ");
+  refuse_levels_that_cannot_fit({info_.memory}, scene_name(scene_) + ": ");
 }
 
 // Step 4: subdivision, collocation points (22), rho and E of channel 0 (and u) at them.

@@ -120,14 +120,13 @@ const char* to_string(SolverKind kind) {
 
 NeumannIteration::NeumannIteration(Eigen::VectorXd E, SolverOptions options)
     : E_(std::move(E)), u_(E_), options_(std::move(options)), sums_(options_.communicator) {  // u^(1) = E + K 0
+  options_.validate();
   r_.solver = "neumann";
   e_norm_ = sums_.inf_norm(E_);
   previous_norm_ = e_norm_;
   if (e_norm_ == 0) {
     phase_ = Phase::finished;  // u = 0 exactly, no product
     r_.u = u_;
-  } else if (options_.max_iterations < 1) {
-    stop(SolveStatus::not_converged);
   }
 }
 
@@ -202,6 +201,7 @@ SolveResult solve_gmres(const RadiosityOperator& K, const Eigen::VectorXd& E, co
 
 SolveResult solve_gmres_from(const RadiosityOperator& K, const Eigen::VectorXd& E, const SolverOptions& options,
                              double max_reflectivity, Eigen::VectorXd u, Eigen::VectorXd residual, int products) {
+  options.validate();
   const BlockedReductions sums(options.communicator);
   check_sizes(K, E, sums);
   if (u.size() != E.size() || residual.size() != E.size())
@@ -328,6 +328,7 @@ std::string solver_choice(double max_reflectivity, double tolerance) {
 
 SolveResult solve(const RadiosityOperator& K, const Eigen::VectorXd& E, const SolverOptions& options,
                   double max_reflectivity) {
+  options.validate();
   if (options.kind == SolverKind::automatic) {
     SolverOptions chosen = options;
     chosen.kind = choose_solver(max_reflectivity, options.tolerance);

@@ -10,9 +10,19 @@
 #include <array>
 #include <cstddef>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace panelrad::geometry {
+
+/// Why n0 >= 1 triangles cannot be refined `level` >= 0 times, or "" when they can: the tree's
+/// elements, n = n0 4^level, and its clusters on all levels (fewer than 4n/3) are numbered by
+/// the 32-bit Index, so both must be at most 2^31 - 1. The reason names the level, n as
+/// n0 * 4^level and its value, the limit and the largest level that has one, e.g. "level 14 gives
+/// n = 12 * 4^14 = 3221225472 elements, more than the 2147483647 that the 32-bit indices of the
+/// elements and clusters can number: level 13 is the largest for 12 triangles". Any level, without
+/// overflow.
+std::string level_size_problem(Index n0, int level);
 
 /// One triangle of some level: a cluster tau of the paper.
 /// Vertices are the exact midpoint-subdivision corners rounded to double (a midpoint is computed
@@ -36,8 +46,8 @@ class ClusterTree {
   /// Subdivides a validated mesh (validate_closed_convex) `finest_level` times.
   /// Throws MeshError when the tree would not fit in memory (estimate given, checked before any
   /// allocation against default_memory_limit()), when level < 0, when n or the number of clusters
-  /// would overflow Index, or when the mesh is inconsistent (bad index, non-finite coordinate,
-  /// zero-area triangle).
+  /// would overflow Index (level_size_problem), or when the mesh is inconsistent (bad index,
+  /// non-finite coordinate, zero-area triangle).
   ClusterTree(const TriangleMesh& validated_mesh, int finest_level);
   /// As above, refusing trees whose estimate_bytes() exceeds memory_limit_bytes; `planes` says
   /// which facets share a supporting plane (facet_planes): exact for a general scene.

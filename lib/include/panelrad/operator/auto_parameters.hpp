@@ -127,7 +127,8 @@ struct ProblemSize {
 
 /// The size of `mesh` (validated: oriented, for the facing fraction) refined `level` times
 /// (n = 4^level n0; midpoint subdivision halves every edge, so h = longest input edge / 2^level).
-/// Throws std::invalid_argument for level < 0 or an empty mesh.
+/// Throws std::invalid_argument for level < 0 or an empty mesh, ResourceError for a level whose
+/// elements or clusters exceed the 32-bit index (geometry::level_size_problem).
 ProblemSize problem_size(const geometry::TriangleMesh& mesh, int level);
 
 /// max(1, A(rho_max)), A(rho) = rho / (1 - rho): the bound on the amplification of the

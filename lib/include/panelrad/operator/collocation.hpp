@@ -26,6 +26,9 @@ class Collocation {
   };
   ChannelValues channel_values(const Scene& scene, std::size_t channel) const;
 
+  /// The scene's shape (Scene::shape): convex, where V = 1 is exact (the paper's setting), or
+  /// general, where V(P, Q) must be computed (make_operator refuses V = 1 there).
+  geometry::SceneShape shape() const { return shape_; }
   const geometry::ClusterTree& tree() const { return *tree_; }
   std::shared_ptr<const geometry::ClusterTree> shared_tree() const { return tree_; }
   Index size() const { return tree_->num_elements(); }
@@ -46,7 +49,8 @@ class Collocation {
   /// The same discretization with rho(P_i) replaced by `weights` (finite, >= 0; a weight of 0
   /// marks a row that is not needed): an operator built on it computes
   /// (W v)_i = w_i / pi Int_S v G(P_i, Q) dS_Q. With w = 1 it is the irradiance operator H of a
-  /// multi-channel solve, K_n = diag(rho) H for every channel. Shares the cluster tree.
+  /// multi-channel solve, K_n = diag(rho) H for every channel. Shares the cluster tree (and the
+  /// scene's shape).
   Collocation with_row_weights(Eigen::VectorXd weights) const;
 
   double tree_seconds() const { return tree_s_; }
@@ -55,6 +59,7 @@ class Collocation {
  private:
   Collocation() = default;
   std::shared_ptr<const geometry::ClusterTree> tree_;
+  geometry::SceneShape shape_ = geometry::SceneShape::general;
   Eigen::VectorXd rho_, E_, true_u_;
   double tree_s_ = 0, emissivity_s_ = 0;
 };

@@ -37,6 +37,12 @@ enum class Visibility { automatic, unoccluded, occluded };
 const char* to_string(Visibility visibility);  ///< "auto" | "unoccluded" | "occluded"
 /// The inverse of to_string; anything else is a std::invalid_argument listing the valid names.
 Visibility parse_visibility(const std::string& name);
+/// Why `visibility` cannot build an operator on a scene of `shape`, or "" when it can: unoccluded
+/// (V = 1) is the paper's convex assumption and exact only on a proven convex surface; on a
+/// general scene it would let light through the faces that hide one part from another (entries
+/// of K_n < 0 where a face is seen from its back), so it is refused there, naming the reason and
+/// occluded instead. automatic is not an operator's (the solver resolves it).
+std::string visibility_problem(Visibility visibility, geometry::SceneShape shape);
 
 /// What the visibility computation of an occluded operator did: the (P_i, cluster) pairs of the
 /// coverings (42) classified fully visible, hidden and partly visible, the elements integrated
@@ -80,8 +86,10 @@ bool single_precision_far_field(Visibility visibility);
 
 /// The operator with rows weighted by the collocation's reflectivity (33):
 /// (K_n v)_i = rho(P_i)/pi Int_S v G(P_i, Q) V(P_i, Q) dS_Q. options.method automatic and
-/// visibility automatic are std::invalid_argument (the solver resolves them). With occluded, the
-/// occluders are the level-0 triangles of the collocation's tree (the scene's faces).
+/// visibility automatic are std::invalid_argument (the solver resolves them), and so is
+/// unoccluded on a scene that is not proven convex (visibility_problem; the collocation keeps the
+/// scene's shape). With occluded, the occluders are the level-0 triangles of the collocation's
+/// tree (the scene's faces).
 ///
 /// The fast operator may hold some rows only (FastOptions::rows) or be a probe of the self-check's
 /// sampled rows (FastOptions::probe_samples > 0); the dense operator always holds every row.

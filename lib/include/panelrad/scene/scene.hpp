@@ -47,7 +47,8 @@ class Scene {
   /// Takes a validated mesh (geometry::validate_mesh, geometry::load_scene_mesh, load_scene) with the
   /// channels' names (at least one, distinct, non-empty); its shape is the visibility policy:
   /// convex (V = 1, the paper's setting) or general (the solver computes V(P, Q)). Reflectivity
-  /// defaults to 0 and emission to 1 everywhere in every channel.
+  /// and emission default to 0 everywhere in every channel: no surface emits unless its E is
+  /// given (set_emissivity).
   explicit Scene(geometry::ValidatedMesh mesh, std::vector<std::string> channels = {"value"});
   /// Validates `mesh` as read (geometry::validate_mesh: MeshError naming the rule and the faces when
   /// it is invalid), keeps the validation's notes, and takes it as above.

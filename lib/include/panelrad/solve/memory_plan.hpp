@@ -82,10 +82,11 @@ LevelMemoryEstimate estimate_level_memory(const geometry::TriangleMesh& mesh, in
                                           const SolverOptions& solver, double max_reflectivity,
                                           const LevelMemoryOptions& options = {});
 
-/// Throws ResourceError for the first estimate whose total exceeds 90% of available_bytes
-/// (10% is left for what is not counted: strings, the allocator, thread stacks), naming `what`
-/// (a prefix: "cube ", "scene.obj: "), the level, n, the breakdown, what is available and which
-/// limit gives it.
+/// Throws ResourceError for the first level whose elements or clusters exceed the 32-bit index
+/// (geometry::level_size_problem: its count, before any memory figure), else for the first
+/// estimate whose total exceeds 90% of available_bytes (10% is left for what is not counted:
+/// strings, the allocator, thread stacks), naming `what` (a prefix: "cube ", "scene.obj: "), the
+/// level, n, the breakdown, what is available and which limit gives it.
 void refuse_levels_that_cannot_fit(const std::vector<LevelMemoryEstimate>& levels, const std::string& what,
                                    const MemoryAvailability& available = memory_availability());
 

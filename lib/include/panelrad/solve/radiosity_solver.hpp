@@ -75,8 +75,8 @@ class ScaledOperator final : public RadiosityOperator {
 };
 
 struct SolveOptions {
-  int level = -1;                        ///< refinement level; < 0: the largest with n <= max_elements
-  geometry::Index max_elements = 20000;  ///< used when level < 0 (level 0 at least)
+  int level = -1;                        ///< refinement level; -1: the largest with n <= max_elements
+  geometry::Index max_elements = 20000;  ///< used when level is -1 (level 0 at least)
   /// The operator, one struct: op.method automatic (the default) takes the measured rule of
   /// auto_parameters.hpp, self-checked and tightened, keeping op.local (the target clusters'
   /// local expansions on or off); dense or fast take op's near rule, eta and M as given.
@@ -95,7 +95,7 @@ struct SolveOptions {
   /// the paper's setting with no visibility work at all; occluded computes it on any scene;
   /// unoccluded on a general scene is a std::invalid_argument (V = 1 would be wrong there).
   Visibility visibility = Visibility::automatic;
-  /// The iteration: kind (automatic: choose_solver), tolerance (<= 0: discretization_tolerance(h,
+  /// The iteration: kind (automatic: choose_solver), tolerance (0: discretization_tolerance(h,
   /// diam)), max_iterations, GMRES restart; its per-product callback is used when `progress` is
   /// empty.
   SolverOptions solver = [] {
@@ -115,6 +115,13 @@ struct SolveOptions {
   /// process makes the same calls (setup, solves) with the same scene and options; must outlive
   /// the solver. The LU solver is refused (it factors the whole matrix on one process).
   const Communicator* communicator = nullptr;
+  /// std::invalid_argument naming the option and its value (option_checks.cpp), for: level below
+  /// -1; max_elements < 1; accuracy outside [0.05, 1e6]; eta outside (0, 1), degree M outside
+  /// 0..12, mu outside 0..8; a tolerance that is not finite, or negative (0 ties it to the
+  /// discretization error); and SolverOptions::validate's max_iterations >= 1, gmres_restart >= 1.
+  /// RadiositySolver (and so solve_scene, the cube runs and the Python module) calls it before
+  /// any work.
+  void validate() const;
 };
 
 /// One solve of (32).
@@ -149,8 +156,9 @@ class RadiositySolver {
   /// Rows sampled by the fast operator's self-check (step 6).
   static constexpr int kSelfCheckSamples = 32;
   /// Setup (header). Keeps a reference to `scene`: it must outlive the solver. Throws
-  /// std::invalid_argument (bad options or data, naming them), ResourceError (a size that does not
-  /// fit, before any work, or an allocation that failed, naming the stage).
+  /// std::invalid_argument (bad options, SolveOptions::validate, or data, naming them),
+  /// ResourceError (a size that does not fit, before any work, or an allocation that failed,
+  /// naming the stage).
   explicit RadiositySolver(const Scene& scene, const SolveOptions& options = {});
   /// A temporary scene would not outlive the solver.
   RadiositySolver(Scene&&, const SolveOptions& = {}) = delete;

@@ -42,6 +42,10 @@ struct SolverOptions {
   /// this process's rows (RowBlockOperator), E and the iterates hold those rows, and every
   /// process runs the same iteration: the reductions are collectives (BlockedReductions).
   const Communicator* communicator = nullptr;
+  /// std::invalid_argument naming the option and its value unless tolerance is finite and > 0,
+  /// max_iterations >= 1 and gmres_restart >= 1. Every solver entry below (and NeumannIteration)
+  /// calls it before its first product (option_checks.cpp).
+  void validate() const;
 };
 
 /// converged: the error estimate reached the tolerance. not_converged: the iteration stopped at
@@ -74,7 +78,8 @@ struct SolveResult : IterationReport {
 };
 
 /// The solvers return their last iterate when they stop at max_iterations (status
-/// not_converged); an iterate that is not finite is a SolverError.
+/// not_converged); an iterate that is not finite is a SolverError; options that fail
+/// SolverOptions::validate are a std::invalid_argument before any product.
 /// Neumann iteration (34), u^(0) = 0: u^(k+1) = E + K u^(k).
 SolveResult solve_neumann(const RadiosityOperator& K, const Eigen::VectorXd& E, const SolverOptions& options);
 /// The Neumann iteration (34) as a sequence of products, so that several equations can share each

@@ -20,7 +20,7 @@ struct CubeRunOptions {
   int max_level = 3;
   /// The operator of every level: method dense or fast, near rule, eta, M.
   OperatorOptions op;
-  /// solver.tolerance <= 0: tied to the discretization error per level (discretization_tolerance).
+  /// solver.tolerance 0: tied to the discretization error per level (discretization_tolerance).
   SolverOptions solver;
   /// Fast method: when the operator's self-check exceeds self_check_threshold(), tighten the
   /// parameters (tighten_parameters) and rebuild, until it passes or nothing is stricter
@@ -56,8 +56,10 @@ struct CubeRow {
   int tightened = 0;                  ///< times the parameters were tightened after a failed check
 };
 
-/// Refuses (ResourceError with the estimate, memory_plan.hpp) before any work when a level
-/// min_level..max_level cannot fit: the cluster tree, the collocation, the operator and the
+/// Refuses (ResourceError) before any work a max_level whose n = 12 * 4^max_level elements exceed
+/// the 32-bit index (level 13 is the largest: geometry::level_size_problem), and, with the
+/// estimate (memory_plan.hpp), a level min_level..max_level that cannot fit: the cluster tree, the
+/// collocation, the operator and the
 /// solver of each level, with options.op, or with choose_parameters() per level when
 /// `automatic_parameters`. run_paper_cube calls it with its own options.
 /// Returns the estimates, one per level.
