@@ -13,6 +13,7 @@
 #include <panelrad/geometry/occluders.hpp>
 #include <panelrad/geometry/scene_validation.hpp>
 
+#include <algorithm>
 #include <utility>
 
 namespace panelrad::geometry {
@@ -46,6 +47,7 @@ SceneValidationReport accepted_convex(SceneValidationReport report) {
   report.pieces = 1;
   report.closed_pieces = 1;
   report.flipped_faces = cr.flipped_faces;
+  report.enclosed = report.closed = true;  // one closed convex surface seen from inside
   return report;
 }
 
@@ -134,6 +136,10 @@ SceneValidationReport validate_scene(TriangleMesh& mesh) {
     }
   // Faces facing each other closer than the visibility can resolve are in contact for it: the
   // resolution is four times the shadow tests' margin, so that any gap beyond it is seen.
+  // The input faces of open pieces: whether any part of them is left once the contacts are removed.
+  std::vector<char> open_facet(at(mesh.num_facets), 0);
+  for (Sz t = 0; t < mesh.triangles.size(); ++t)
+    if (!pieces.in_closed_piece[t]) open_facet[at(mesh.facet_of_triangle[t])] = 1;
   const double resolution = 4 * visibility_margin(mesh);
   const std::vector<Overlap> across_gap = faces_across_a_gap(mesh, resolution);
   close_gaps(mesh, across_gap);
@@ -162,6 +168,9 @@ SceneValidationReport validate_scene(TriangleMesh& mesh) {
   report.closed_pieces = pieces.closed_pieces;
   report.flipped_faces = pieces.flipped;
   report.pieces_against_file = pieces.against_file;
+  report.enclosed = pieces.enclosed;
+  report.closed = pieces.enclosed && std::none_of(mesh.facet_of_triangle.begin(), mesh.facet_of_triangle.end(),
+                                                  [&](Index f) { return open_facet[at(f)] != 0; });
   report.notes.insert(report.notes.begin(),
                       "not one closed convex surface (" + cr.message + "): the visibility V(P, Q) is computed");
   for (std::string& n : pieces.notes) report.notes.push_back(std::move(n));
@@ -180,7 +189,7 @@ SceneValidationReport validate_scene(TriangleMesh& mesh) {
 std::optional<ValidatedMesh> try_validate(TriangleMesh mesh, SceneValidationReport& report) {
   report = validate_scene(mesh);
   if (!report.valid) return std::nullopt;
-  return ValidatedMesh(std::move(mesh), report.shape);
+  return ValidatedMesh(std::move(mesh), report);
 }
 
 ValidatedMesh validate_mesh(TriangleMesh mesh, std::vector<std::string>* notes) {
