@@ -7,6 +7,7 @@ everything is re-exported here. See docs/python.md.
 """
 from ._panelrad import (
     ChannelSolution,
+    EnergyBalanceError,
     Error,
     MeshError,
     Operator,
@@ -28,13 +29,14 @@ from ._panelrad import (
 )
 
 # The classes print as panelrad.Scene, panelrad.MeshError, ... (defined in panelrad._panelrad).
-for _name in ("ChannelSolution", "Error", "MeshError", "Operator", "ResourceError", "Scene", "SceneFileError",
+for _name in ("ChannelSolution", "EnergyBalanceError", "Error", "MeshError", "Operator", "ResourceError", "Scene", "SceneFileError",
               "Solution", "SolveResult", "Solver", "SolverError", "TextFileError"):
     globals()[_name].__module__ = __name__
 del _name
 
 __all__ = [
     "ChannelSolution",
+    "EnergyBalanceError",
     "Error",
     "MeshError",
     "Operator",

@@ -1,5 +1,6 @@
 // panelrad's exceptions as Python classes under panelrad.Error (itself a RuntimeError), each
-// carrying the C++ message: MeshError, SceneFileError, TextFileError, SolverError, ResourceError.
+// carrying the C++ message: MeshError, SceneFileError, TextFileError, SolverError,
+// EnergyBalanceError, ResourceError.
 // A misuse of the API (std::invalid_argument in C++: an option out of range, rho >= 1, E < 0)
 // arrives as ValueError, pybind11's translation, with the library's message.
 #include "bindings.hpp"
@@ -20,6 +21,9 @@ void bind_errors(py::module_& m) {
   scene.attr("__doc__") = "A scene file or its materials (names the file and line, facet or material).";
   static py::exception<SolverError> solver(m, "SolverError", error.ptr());
   solver.attr("__doc__") = "An iteration that did not reach its tolerance (says how far it got).";
+  static py::exception<EnergyBalanceError> energy(m, "EnergyBalanceError", error.ptr());
+  energy.attr("__doc__") =
+      "A solution whose energy balance is far off its expected size (names the channel and both sizes).";
   static py::exception<ResourceError> resource(m, "ResourceError", error.ptr());
   resource.attr("__doc__") = "A size that cannot fit in memory (with the estimate), or an allocation that failed.";
   py::register_exception_translator([](std::exception_ptr p) {
@@ -29,6 +33,8 @@ void bind_errors(py::module_& m) {
       resource(e.what());
     } catch (const SolverError& e) {
       solver(e.what());
+    } catch (const EnergyBalanceError& e) {
+      energy(e.what());
     } catch (const SceneFileError& e) {
       scene(e.what());
     } catch (const TextFileError& e) {
