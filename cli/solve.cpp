@@ -305,7 +305,9 @@ int run_solve(const CLI::App& app, const SolveCommandLine& command_line) {
   for (const std::string& w : s.warnings) std::fprintf(stderr, "panelrad solve: warning: %s\n", w.c_str());
   if (!s.energy_balanced) print_failed_energy_check(s);
   for (const std::string& f : outputs) std::printf("wrote %s%s\n", f.c_str(), s.energy_balanced ? "" : " (for inspection only)");
-  return s.energy_balanced ? 0 : kExitEnergyCheckFailed;
+  if (s.energy_balanced) return 0;
+  std::fflush(stdout);  // a failed status may end the run at once (several processes: MPI_Abort)
+  return kExitEnergyCheckFailed;
 }
 
 }  // namespace
