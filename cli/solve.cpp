@@ -233,12 +233,13 @@ void print_energy_balance(const SceneSolution& s) {
 /// The energy check failed: which channels, and what that makes of the outputs.
 void print_failed_energy_check(const SceneSolution& s) {
   std::string failed;
+  int count = 0;
   for (const ChannelSolution& c : s.channels)
-    if (!c.energy_balanced) failed += (failed.empty() ? "" : ", ") + c.name;
-  std::printf("energy check FAILED (channel %s): the mismatch is more than %g times its expected size, so the solution "
+    if (!c.energy_balanced) failed += (count++ == 0 ? "" : ", ") + c.name;
+  std::printf("energy check FAILED (channel%s %s): the mismatch is more than %g times its expected size, so the solution "
               "breaks the conservation of energy and is not to be trusted; the outputs are written for inspection "
               "only (exit status %d)\n",
-              failed.c_str(), kEnergyMismatchAllowance, kExitEnergyCheckFailed);
+              count > 1 ? "s" : "", failed.c_str(), kEnergyMismatchAllowance, kExitEnergyCheckFailed);
 }
 
 /// The summary on stdout: size, method, self-check, times, each channel's energy balance.
