@@ -83,6 +83,11 @@ int run_check(const CLI::App& app, const CheckCommandLine& line) {
     std::cout << "pieces against the file's winding: " << report.pieces_against_file << "\n";
     std::cout << "faces in contact: " << report.contacts.size() << " pairs, area removed " << report.contact_area_removed
               << "\n";
+    std::cout << "light: "
+              << (report.closed     ? "closed (every ray from a front side ends on a front side: emitted = absorbed)"
+                  : report.enclosed ? "enclosed (none leaves the scene, but open surfaces take light on their back sides)"
+                                    : "open (light leaves the scene)")
+              << "\n";
     std::cout << "valid: general scene (" << report.pieces << " piece" << (report.pieces == 1 ? "" : "s") << ", "
               << report.closed_pieces << " closed): the visibility V(P,Q) is computed\n";
     return 0;

@@ -47,7 +47,10 @@ const char* kSolveUsage =
     "  y when the lights face along y, else z); PREFIX\n"
     "  defaults to the scene's name with '_radiosity' in\n"
     "  the current directory. Progress goes to stderr\n"
-    "  (--quiet: none); a summary with the energy balance to stdout.\n";
+    "  (--quiet: none); a summary with the energy balance to stdout.\n"
+    "  Exit status: 0 solved; 1 invalid input or failed run (no outputs); 2 usage error; 3 energy check\n"
+    "  failed: the solution breaks the conservation of energy far beyond its discretization error, and\n"
+    "  the outputs are written for inspection only.\n";
 
 std::string default_prefix(const std::string& scene) {
   return std::filesystem::path(scene).stem().string() + "_radiosity";
@@ -203,6 +206,42 @@ void check_outputs(const Scene& scene, const std::string& scene_path, const std:
   for (const std::string& path : outputs) check_output_path(path);
 }
 
+/// The energy balance line: what emitted = absorbed (+ the light no front side takes) means for
+/// this scene, and the mismatch's expected size.
+void print_energy_balance(const SceneSolution& s) {
+  const auto fractions = [&s] {
+    for (const ChannelSolution& c : s.channels) std::printf(" %s %.4f", c.name.c_str(), c.escaped);
+  };
+  if (s.shape == geometry::SceneShape::convex) {
+    std::printf("energy balance: emitted = absorbed on a closed convex scene;");
+  } else if (s.closed) {
+    std::printf("energy balance: emitted = absorbed in a closed scene;");
+  } else if (s.enclosed) {
+    std::printf("energy balance: the scene is enclosed (no light leaves it), but the back sides of its one-sided "
+                "surfaces take the light that falls on them, so emitted = absorbed + taken by back sides; back-side "
+                "fraction:");
+    fractions();
+    std::printf(";");
+  } else {
+    std::printf("energy balance: the scene is open, so emitted = absorbed + escaped; escaped fraction:");
+    fractions();
+    std::printf(";");
+  }
+  std::printf(" mismatch expected below 0.5 h/diam = %.2e\n", s.expected_energy_mismatch);
+}
+
+/// The energy check failed: which channels, and what that makes of the outputs.
+void print_failed_energy_check(const SceneSolution& s) {
+  std::string failed;
+  int count = 0;
+  for (const ChannelSolution& c : s.channels)
+    if (!c.energy_balanced) failed += (count++ == 0 ? "" : ", ") + c.name;
+  std::printf("energy check FAILED (channel%s %s): the mismatch is more than %g times its expected size, so the solution "
+              "breaks the conservation of energy and is not to be trusted; the outputs are written for inspection "
+              "only (exit status %d)\n",
+              count > 1 ? "s" : "", failed.c_str(), kEnergyMismatchAllowance, kExitEnergyCheckFailed);
+}
+
 /// The summary on stdout: size, method, self-check, times, each channel's energy balance.
 void print_summary(const Scene& scene, const std::string& scene_path, const SceneSolution& s) {
   std::printf("scene %s: %d facets, %zu channel%s\n", scene_path.c_str(), static_cast<int>(scene.mesh().num_facets),
@@ -236,17 +275,7 @@ void print_summary(const Scene& scene, const std::string& scene_path, const Scen
     std::printf("%-8s %10d %10.2e %12.5e %12.5e %12.2e  %s\n", c.name.c_str(), c.iterations, c.residual, c.emitted,
                 c.absorbed, c.energy_mismatch, how.c_str());
   }
-  if (s.shape == geometry::SceneShape::convex) {
-    std::printf("energy balance: emitted = absorbed on a closed convex scene; mismatch expected below 0.5 h/diam = %.2e\n",
-                s.expected_energy_mismatch);
-  } else if (s.closed) {
-    std::printf("energy balance: emitted = absorbed in a closed scene; mismatch expected below 0.5 h/diam = %.2e\n",
-                s.expected_energy_mismatch);
-  } else {
-    std::printf("energy balance: the scene is open, so emitted = absorbed + escaped; escaped fraction:");
-    for (const ChannelSolution& c : s.channels) std::printf(" %s %.4f", c.name.c_str(), c.escaped);
-    std::printf("\n");
-  }
+  print_energy_balance(s);
 }
 
 int run_solve(const CLI::App& app, const SolveCommandLine& command_line) {
@@ -266,6 +295,7 @@ int run_solve(const CLI::App& app, const SolveCommandLine& command_line) {
   if (writer) check_outputs(scene, command_line.scene_path, outputs);
   const SceneSolution s = solve_scene(scene, o);
   s.require_converged();  // a channel out of iterations: exit 1 with the SolverError's message, no outputs
+  // A failed energy check is said by the process that writes (every process holds the same answer).
   if (!writer) return 0;
   OutputOptions picture;
   picture.view_direction = command_line.view;
@@ -274,8 +304,11 @@ int run_solve(const CLI::App& app, const SolveCommandLine& command_line) {
 
   print_summary(scene, command_line.scene_path, s);
   for (const std::string& w : s.warnings) std::fprintf(stderr, "panelrad solve: warning: %s\n", w.c_str());
-  for (const std::string& f : outputs) std::printf("wrote %s\n", f.c_str());
-  return 0;
+  if (!s.energy_balanced) print_failed_energy_check(s);
+  for (const std::string& f : outputs) std::printf("wrote %s%s\n", f.c_str(), s.energy_balanced ? "" : " (for inspection only)");
+  if (s.energy_balanced) return 0;
+  std::fflush(stdout);  // a failed status may end the run at once (several processes: MPI_Abort)
+  return kExitEnergyCheckFailed;
 }
 
 }  // namespace

@@ -543,6 +543,20 @@ std::optional<Failure> orient_scene_pieces(TriangleMesh& mesh, ScenePieces& out)
     if (p.closed)
       for (Index t : p.triangles) out.in_closed_piece[at(t)] = 1;
   }
+  // 6. Whether light can leave the scene: not when every closed piece inside no other is an
+  // enclosure and every open piece lies inside one of them (a sheet in a room). A ray from a front
+  // side then ends on a face, front or back.
+  out.enclosed = !closed.empty();
+  for (Sz j = 0; j < pieces.size() && out.enclosed; ++j) {
+    const Piece& p = pieces[j];
+    if (p.closed) {
+      out.enclosed = p.parent != kNone || p.kind == Kind::enclosure;
+      continue;
+    }
+    out.enclosed = std::any_of(closed.begin(), closed.end(), [&](Index i) {
+      return pieces[at(i)].parent == kNone && surfaces[at(i)] && where(j, i) == 1;
+    });
+  }
   out.pieces = pieces.size();
   out.closed_pieces = closed.size();
   out.flipped = 0;

@@ -13,6 +13,7 @@
 #include <panelrad/geometry/occluders.hpp>
 #include <panelrad/geometry/scene_validation.hpp>
 
+#include <algorithm>
 #include <set>
 #include <utility>
 
@@ -47,6 +48,7 @@ SceneValidationReport accepted_convex(SceneValidationReport report) {
   report.pieces = 1;
   report.closed_pieces = 1;
   report.flipped_faces = cr.flipped_faces;
+  report.enclosed = report.closed = true;  // one closed convex surface seen from inside
   return report;
 }
 
@@ -149,6 +151,10 @@ SceneValidationReport validate_scene(TriangleMesh& mesh) {
       mesh = input;
       return rejected(std::move(report), *f);
     }
+  // The input faces of open pieces: whether any part of them is left once the contacts are removed.
+  std::vector<char> open_facet(at(mesh.num_facets), 0);
+  for (Sz t = 0; t < mesh.triangles.size(); ++t)
+    if (!pieces.in_closed_piece[t]) open_facet[at(mesh.facet_of_triangle[t])] = 1;
   std::vector<Overlap> to_close = faces_across_a_gap(mesh, tolerance);
   {
     // A pair found within the rounding already (touching) is not a gap as well.
@@ -186,6 +192,9 @@ SceneValidationReport validate_scene(TriangleMesh& mesh) {
   report.closed_pieces = pieces.closed_pieces;
   report.flipped_faces = pieces.flipped;
   report.pieces_against_file = pieces.against_file;
+  report.enclosed = pieces.enclosed;
+  report.closed = pieces.enclosed && std::none_of(mesh.facet_of_triangle.begin(), mesh.facet_of_triangle.end(),
+                                                  [&](Index f) { return open_facet[at(f)] != 0; });
   report.notes.insert(report.notes.begin(),
                       "not one closed convex surface (" + cr.message + "): the visibility V(P, Q) is computed");
   for (std::string& n : pieces.notes) report.notes.push_back(std::move(n));
@@ -215,7 +224,7 @@ SceneValidationReport validate_scene(TriangleMesh& mesh) {
 std::optional<ValidatedMesh> try_validate(TriangleMesh mesh, SceneValidationReport& report) {
   report = validate_scene(mesh);
   if (!report.valid) return std::nullopt;
-  return ValidatedMesh(std::move(mesh), report.shape);
+  return ValidatedMesh(std::move(mesh), report);
 }
 
 ValidatedMesh validate_mesh(TriangleMesh mesh, std::vector<std::string>* notes) {

@@ -226,6 +226,8 @@ struct ScenePieces {
   Sz flipped = 0;                  // triangles flipped to agree with most of their piece's area
   Sz against_file = 0;             // closed pieces whose front side is the back of the file's winding
   std::vector<char> in_closed_piece;  // per triangle: its piece is closed
+  bool enclosed = false;           // every closed piece inside no other is an enclosure, and every open
+                                   // piece lies inside one of them: no ray from a front side leaves
   std::vector<std::string> notes;  // one per piece, or a summary of many
 };
 

@@ -20,6 +20,7 @@ from ._panelrad import (
     ArgumentTypeError,
     ChannelError,
     ChannelSolution,
+    EnergyBalanceError,
     Error,
     MeshError,
     Operator,
@@ -40,7 +41,7 @@ from ._panelrad import (
     write_outputs,
 )
 
-_CLASSES = ("ArgumentError", "ArgumentTypeError", "ChannelError", "ChannelSolution", "Error", "MeshError", "Operator",
+_CLASSES = ("ArgumentError", "ArgumentTypeError", "ChannelError", "ChannelSolution", "EnergyBalanceError", "Error", "MeshError", "Operator",
             "ResourceError", "Scene", "SceneFileError", "Solution", "SolveResult", "Solver", "SolverError",
             "TextFileError")
 _FUNCTIONS = ("load_scene", "max_threads", "paper_cube", "set_threads", "solve_scene", "write_outputs")
@@ -130,6 +131,7 @@ __all__ = [
     "ArgumentTypeError",
     "ChannelError",
     "ChannelSolution",
+    "EnergyBalanceError",
     "Error",
     "MeshError",
     "Operator",

@@ -1,6 +1,7 @@
 // panelrad's exceptions as Python classes under panelrad.Error (itself a RuntimeError), each
 // carrying the C++ message: every exception the module raises is a panelrad.Error.
-//   MeshError, SceneFileError, TextFileError, SolverError, ResourceError: the library's own
+//   MeshError, SceneFileError, TextFileError, SolverError, EnergyBalanceError, ResourceError: the
+//     library's own
 //     (ResourceError also for an allocation that failed, std::bad_alloc);
 //   ArgumentError, also a ValueError: a misuse of the API (std::invalid_argument and the other
 //     std::logic_error in C++: an option out of range, rho >= 1, E < 0; a wrong array shape);
@@ -46,6 +47,9 @@ void bind_errors(py::module_& m) {
   scene.attr("__doc__") = "A scene file or its materials (names the file and line, facet or material).";
   static py::exception<SolverError> solver(m, "SolverError", error.ptr());
   solver.attr("__doc__") = "An iteration that did not reach its tolerance (says how far it got).";
+  static py::exception<EnergyBalanceError> energy(m, "EnergyBalanceError", error.ptr());
+  energy.attr("__doc__") =
+      "A solution whose energy balance is far off its expected size (names the channel and both sizes).";
   static py::exception<ResourceError> resource(m, "ResourceError", error.ptr());
   resource.attr("__doc__") = "A size that cannot fit in memory (with the estimate), or an allocation that failed.";
   // Held for the life of the process (handles: never released, even after the interpreter's end).
@@ -71,6 +75,8 @@ void bind_errors(py::module_& m) {
       resource(e.what());
     } catch (const SolverError& e) {
       solver(e.what());
+    } catch (const EnergyBalanceError& e) {
+      energy(e.what());
     } catch (const SceneFileError& e) {
       scene(e.what());
     } catch (const TextFileError& e) {

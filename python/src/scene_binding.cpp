@@ -124,7 +124,7 @@ std::string scene_repr(const Scene& s) {
   for (const auto& c : s.channels()) channels += (channels.empty() ? "" : ", ") + ("'" + c + "'");
   return "<panelrad.Scene '" + s.mesh().source + "': " + std::to_string(s.mesh().triangles.size()) + " triangles, " +
          std::to_string(s.num_facets()) + " facets, " + geometry::to_string(s.shape()) +
-         (s.closed() ? ", closed" : ", open") + ", channels (" + channels + ")" +
+         (s.closed() ? ", closed" : s.enclosed() ? ", enclosed" : ", open") + ", channels (" + channels + ")" +
          (s.has_manufactured_solution() ? ", manufactured solution" : "") + ">";
 }
 
@@ -159,7 +159,10 @@ ArgumentTypeError (a TypeError).
       .def_property_readonly("shape", [](const Scene& s) { return std::string(geometry::to_string(s.shape())); },
                              "'convex' (proven: V = 1) or 'general' (V(P, Q) is computed).")
       .def_property_readonly("closed", &Scene::closed,
-                             "Every edge in exactly two triangles: all light stays in the scene.")
+                             "Every ray from a front side ends on a front side: emitted = absorbed.")
+      .def_property_readonly("enclosed", &Scene::enclosed,
+                             "No light leaves the scene (closed, or one-sided surfaces in a room, whose back "
+                             "sides take light).")
       .def_property_readonly("notes", &Scene::notes, "What loading and validation did.")
       .def_property_readonly("facet_material", &Scene::facet_material, "Material name per facet (OBJ scenes).")
       .def_property_readonly("source", [](const Scene& s) { return s.mesh().source; })

@@ -54,7 +54,8 @@ void bind_solution(py::module_& m) {
   py::class_<ChannelHandle>(m, "ChannelSolution", R"doc(
 One channel of a Solution: radiosity u_n and irradiance H u_n per element, rho and E per
 element, the iteration's report and the energy balance (emitted sum A_i E_i against absorbed
-sum A_i (1 - rho_i) H_i: equal in a closed scene). Arrays are read-only views.
+sum A_i (1 - rho_i) H_i plus the light no front side takes: equal up to the discretization).
+Arrays are read-only views.
 )doc")
       .def_property_readonly("name", [](const ChannelHandle& c) { return c.channel().name; })
       .def_property_readonly("radiosity", [](const ChannelHandle& c) { return view_vector(c.channel().radiosity, c.owner); })
@@ -72,7 +73,11 @@ sum A_i (1 - rho_i) H_i: equal in a closed scene). Arrays are read-only views.
       .def_property_readonly("emitted", [](const ChannelHandle& c) { return c.channel().emitted; })
       .def_property_readonly("absorbed", [](const ChannelHandle& c) { return c.channel().absorbed; })
       .def_property_readonly("energy_mismatch", [](const ChannelHandle& c) { return c.channel().energy_mismatch; })
-      .def_property_readonly("escaped", [](const ChannelHandle& c) { return c.channel().escaped; })
+      .def_property_readonly("escaped", [](const ChannelHandle& c) { return c.channel().escaped; },
+                             "The fraction of the light that reaches no front side (leaves the scene, or falls on "
+                             "a back side); 0 in a closed scene, never negative.")
+      .def_property_readonly("energy_balanced", [](const ChannelHandle& c) { return c.channel().energy_balanced; },
+                             "energy_mismatch is within 4 times its expected size (0.5 h/diam).")
       .def("__repr__", [](const ChannelHandle& c) {
         return "<panelrad.ChannelSolution '" + c.channel().name + "': " +
                (c.channel().converged() ? "converged" : "not converged") + ", " +
@@ -89,7 +94,13 @@ operator that ran, times and warnings. solution[name or index] is a ChannelSolut
       .def_readonly("diameter", &SceneSolution::diameter)
       .def_readonly("method", &SceneSolution::method, "The operator that ran, described.")
       .def_property_readonly("shape", [](const SceneSolution& s) { return std::string(geometry::to_string(s.shape)); })
-      .def_readonly("closed", &SceneSolution::closed)
+      .def_readonly("closed", &SceneSolution::closed, "Every ray from a front side ends on a front side.")
+      .def_readonly("enclosed", &SceneSolution::enclosed, "No light leaves the scene (it may fall on back sides).")
+      .def_readonly("expected_energy_mismatch", &SceneSolution::expected_energy_mismatch,
+                    "0.5 h/diam: the energy mismatch's expected size from the discretization.")
+      .def_readonly("energy_balanced", &SceneSolution::energy_balanced,
+                    "Every channel passed the energy check (mismatch within 4 times its expected size); "
+                    "False: the solution is not to be trusted.")
       .def_property_readonly("visibility", [](const SceneSolution& s) { return std::string(to_string(s.visibility)); })
       .def_readonly("self_check_error", &SceneSolution::self_check_error, "Fast operator's measured product error; -1: dense.")
       .def_readonly("tightened", &SceneSolution::tightened)
@@ -103,6 +114,8 @@ operator that ran, times and warnings. solution[name or index] is a ChannelSolut
       .def_property_readonly("converged", &SceneSolution::converged)
       .def("require_converged", &SceneSolution::require_converged,
            "Raises SolverError with the message of the first channel that did not converge.")
+      .def("require_energy_balance", &SceneSolution::require_energy_balance,
+           "Raises EnergyBalanceError with the message of the first channel that failed the energy check.")
       .def_property_readonly("channel_names", [](const SceneSolution& s) { return s.field.channels; })
       .def_property_readonly("channels",
                              [](py::object self) {
@@ -156,7 +169,8 @@ operator that ran, times and warnings. solution[name or index] is a ChannelSolut
       .def("__repr__", [](const SceneSolution& s) {
         return "<panelrad.Solution: level " + std::to_string(s.level) + ", n " + std::to_string(s.n) + ", " +
                std::to_string(s.channels.size()) + " channel(s), " + s.method + ", " +
-               (s.converged() ? "converged" : "not converged") + ">";
+               (s.converged() ? "converged" : "not converged") +
+               (s.energy_balanced ? "" : ", energy check failed") + ">";
       });
 
   m.def(
@@ -177,7 +191,9 @@ operator that ran, times and warnings. solution[name or index] is a ChannelSolut
 Solves a scene in one call: one discretization and one operator H for every channel, each
 channel (I - diag(rho_c) H) u_c = E_c (32), and the energy balance. Keyword arguments as Solver.
 A channel that does not converge keeps its last iterate with a warning; call
-solution.require_converged() to raise its SolverError.
+solution.require_converged() to raise its SolverError. A channel that fails the energy check keeps
+its solution with a warning; call solution.require_energy_balance() to raise its
+EnergyBalanceError.
 )doc");
 
   m.def(

@@ -21,7 +21,7 @@ def test_a_valid_cube(cube_arrays):
 
 def test_exception_hierarchy():
     for cls in (panelrad.MeshError, panelrad.SceneFileError, panelrad.TextFileError, panelrad.SolverError,
-                panelrad.ResourceError):
+                panelrad.EnergyBalanceError, panelrad.ResourceError):
         assert issubclass(cls, panelrad.Error)
     assert issubclass(panelrad.Error, RuntimeError)
     # A misuse is a panelrad.Error too, and still the Python exception it is named after.

@@ -647,6 +647,56 @@ TEST(SceneValidation, BoxRestingOnTheFloorLosesItsContactFaces) {
   EXPECT_EQ(std::count(used.begin(), used.end(), 0), 0);
 }
 
+// Whether light stays on front sides (closed), in the scene (enclosed), or leaves it. A box standing
+// on the floor loses its bottom and the floor under it, which leaves no hole: every ray from a
+// front side still ends on a front side, as in the room with a floating box.
+TEST(SceneValidation, RoomWithABoxStandingOnItsFloorIsClosed) {
+  for (const double lift : {0.0, 0.25}) {
+    SceneBuilder b;
+    b.box({0, 0, 0}, {1, 1, 1}, false);
+    b.box({0.25, 0.375, lift}, {0.625, 0.75, lift + 0.3});
+    const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
+    ASSERT_TRUE(r.valid) << r.message;
+    EXPECT_EQ(r.contacts.size(), lift == 0 ? 1u : 0u);
+    EXPECT_TRUE(r.enclosed) << "lift " << lift;
+    EXPECT_TRUE(r.closed) << "lift " << lift;
+  }
+  // The convex path: one closed surface seen from inside.
+  pg::TriangleMesh cube = pg::make_cube();
+  const pg::SceneValidationReport convex = pg::validate_scene(cube);
+  EXPECT_EQ(convex.shape, pg::SceneShape::convex);
+  EXPECT_TRUE(convex.enclosed && convex.closed);
+}
+
+// A one-sided sheet in a closed room: no light leaves the room, but the sheet's back side takes
+// what falls on it (it neither reflects nor emits), so the room is enclosed, not closed.
+TEST(SceneValidation, OneSidedSheetInARoomIsEnclosedButNotClosed) {
+  for (const double z : {-1.0, 1.0}) {
+    SceneBuilder b;
+    b.box({0, 0, 0}, {1, 1, 1}, false);
+    b.quad({0.25, 0.25, 0.5}, {0.5, 0, 0}, {0, 0.5, 0}, {0, 0, z});
+    const pg::SceneValidationReport r = pg::validate_scene(b.mesh);
+    ASSERT_TRUE(r.valid) << r.message;
+    EXPECT_TRUE(r.enclosed) << "sheet facing z = " << z;
+    EXPECT_FALSE(r.closed) << "sheet facing z = " << z;
+  }
+}
+
+// Light leaves a room without its front wall, and a cube under a lamp (nothing around them).
+TEST(SceneValidation, OpenRoomAndCubeUnderALampAreNeitherClosedNorEnclosed) {
+  SceneBuilder open_room;
+  open_room.box({0, 0, 0}, {1, 1, 1}, false, {"-y"});
+  SceneBuilder lamp;
+  lamp.box({0, 0, 0}, {1, 1, 1});
+  lamp.quad({-1, -1, 3}, {3, 0, 0}, {0, 3, 0}, {0, 0, -1});
+  for (SceneBuilder* b : {&open_room, &lamp}) {
+    const pg::SceneValidationReport r = pg::validate_scene(b->mesh);
+    ASSERT_TRUE(r.valid) << r.message;
+    EXPECT_FALSE(r.enclosed);
+    EXPECT_FALSE(r.closed);
+  }
+}
+
 TEST(SceneValidation, BoxesFaceToFaceLoseTheOverlapOnly) {
   // Two boxes touching in the plane x = 0.4 over [0.3, 0.4] x [0.25, 0.4] (a partial overlap).
   SceneBuilder b;

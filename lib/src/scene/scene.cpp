@@ -80,22 +80,6 @@ void check_value(bool is_rho, double v, const std::string& where, const std::str
                               where + ", channel " + channel + ", " + problem);
 }
 
-/// Every undirected edge (by vertex index) in exactly two triangles.
-bool every_edge_shared_twice(const geometry::TriangleMesh& mesh) {
-  std::vector<std::pair<Index, Index>> edges;
-  edges.reserve(3 * mesh.triangles.size());
-  for (const auto& t : mesh.triangles)
-    for (int s = 0; s < 3; ++s) edges.emplace_back(std::min(t[s], t[(s + 1) % 3]), std::max(t[s], t[(s + 1) % 3]));
-  std::sort(edges.begin(), edges.end());
-  for (std::size_t k = 0; k < edges.size();) {
-    std::size_t m = k;
-    while (m < edges.size() && edges[m] == edges[k]) ++m;
-    if (m - k != 2) return false;
-    k = m;
-  }
-  return true;
-}
-
 }  // namespace
 
 Scene::Validated Scene::validate(geometry::TriangleMesh mesh) {
@@ -113,7 +97,11 @@ Scene::Scene(Validated validated, std::vector<std::string> channels)
 }
 
 Scene::Scene(geometry::ValidatedMesh mesh, std::vector<std::string> channels)
-    : shape_(mesh.shape()), mesh_(std::move(mesh).take_mesh()), channels_(std::move(channels)) {
+    : shape_(mesh.shape()),
+      mesh_(std::move(mesh).take_mesh()),
+      channels_(std::move(channels)),
+      closed_(mesh.closed()),
+      enclosed_(mesh.enclosed()) {
   if (mesh_.triangles.empty()) throw std::invalid_argument("scene: empty mesh");
   if (channels_.empty()) throw std::invalid_argument("scene: no channels");
   for (std::size_t c = 0; c < channels_.size(); ++c) {
@@ -121,7 +109,6 @@ Scene::Scene(geometry::ValidatedMesh mesh, std::vector<std::string> channels)
     for (std::size_t d = 0; d < c; ++d)
       if (channels_[d] == channels_[c]) throw std::invalid_argument("scene: channel '" + channels_[c] + "' is named twice");
   }
-  closed_ = every_edge_shared_twice(mesh_);
   data_.resize(channels_.size());
   for (Channel& ch : data_) {  // nothing reflects and nothing emits until given
     ch.rho_facet.assign(static_cast<std::size_t>(mesh_.num_facets), 0.0);

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <stdexcept>
 
 namespace panelrad {
@@ -86,17 +87,24 @@ int identical_earlier_channel(const ElementField& field, std::size_t c) {
   return -1;
 }
 
-// Emitted power sum A_i E_i against absorbed power sum A_i (1 - rho_i) H_i (closed convex scene).
-void energy_balance(const ElementField& field, std::size_t c, ChannelSolution& ch) {
+// The energy balance of channel c: emitted power sum A_i E_i, absorbed power
+// sum A_i (1 - rho_i) H_i, and, in a scene that is not closed, the power that reaches no front side.
+// Of the light leaving dA_i a fraction H_ij (the point-to-element form factor) lands on element j,
+// so F_i = (H 1)_i of it lands on front sides (`seen`; null in a closed scene, where F_i = 1) and
+// A_i u_i (1 - F_i) leaves the scene or falls on a back side. 1 - F_i < 0 is rounding or the fast
+// operator's error: taken as 0.
+void energy_balance(const ElementField& field, std::size_t c, const Eigen::VectorXd* seen, ChannelSolution& ch) {
   const Eigen::VectorXd& rho = field.rho[c];
   const Eigen::VectorXd& E = field.emission[c];
+  double escaped = 0;
   for (Index i = 0; i < rho.size(); ++i) {
     const double a = field.area[static_cast<std::size_t>(i)];
     ch.emitted += a * E[i];
     ch.absorbed += a * (1 - rho[i]) * ch.irradiance[i];
+    if (seen) escaped += a * ch.radiosity[i] * std::max(0.0, 1 - (*seen)[i]);
   }
-  ch.energy_mismatch = ch.emitted != 0 ? std::abs(ch.emitted - ch.absorbed) / std::abs(ch.emitted) : 0;
-  ch.escaped = ch.emitted != 0 ? (ch.emitted - ch.absorbed) / ch.emitted : 0;
+  ch.energy_mismatch = ch.emitted != 0 ? std::abs(ch.emitted - ch.absorbed - escaped) / std::abs(ch.emitted) : 0;
+  ch.escaped = ch.emitted != 0 ? escaped / ch.emitted : 0;
 }
 
 // What channel c needs before any solve: the solution of an identical earlier channel, or u = 0
@@ -120,8 +128,8 @@ bool channel_without_solve(const SceneSolution& out, std::size_t c, ChannelSolut
 }
 
 // (I - diag(rho_c) H) u_c = E_c, (32), solved, and the energy balance.
-void take_solve(ChannelSolve&& r, const ElementField& field, std::size_t c, ChannelSolution& ch,
-                const std::function<void(const std::string&)>& say) {
+void take_solve(ChannelSolve&& r, const ElementField& field, std::size_t c, const Eigen::VectorXd* seen,
+                ChannelSolution& ch, const std::function<void(const std::string&)>& say) {
   ch.status = r.status;
   ch.message = std::move(r.message);
   ch.radiosity = std::move(r.u);
@@ -130,19 +138,24 @@ void take_solve(ChannelSolve&& r, const ElementField& field, std::size_t c, Chan
   ch.residual = r.residual;
   ch.error_estimate = r.error_estimate;
   ch.irradiance = std::move(r.irradiance);  // the light arriving: the product without rho
-  energy_balance(field, c, ch);
+  energy_balance(field, c, seen, ch);
   say("channel " + ch.name + ": " + ch.solver + fmt(", %.0f products, energy mismatch %.2e", ch.iterations, ch.energy_mismatch));
+}
+
+// The energy check's failure, for the warning and EnergyBalanceError.
+std::string energy_check_message(const ChannelSolution& ch, double expected) {
+  return "channel " + ch.name +
+         fmt(": energy mismatch %.2e is far above its expected size %.2e (0.5 h/diam", ch.energy_mismatch, expected) +
+         fmt("; at most %g times it is accepted): the solution breaks the conservation of energy and is not to be "
+             "trusted; is the operator inaccurate?",
+             kEnergyMismatchAllowance);
 }
 
 // What a channel's answer says beside its numbers.
 void channel_warnings(const ChannelSolution& ch, SceneSolution& out) {
   if (!ch.shared_with.empty()) return;
   if (ch.status != SolveStatus::converged) out.warnings.push_back("channel " + ch.name + ": " + ch.message);
-  if (out.closed && ch.energy_mismatch > 4 * out.expected_energy_mismatch)
-    out.warnings.push_back(std::string("channel ") + ch.name +
-                           fmt(": energy mismatch %.2e is far above its expected size %.2e (0.5 h/diam): is the "
-                               "operator inaccurate?",
-                               ch.energy_mismatch, out.expected_energy_mismatch));
+  if (!ch.energy_balanced) out.warnings.push_back(energy_check_message(ch, out.expected_energy_mismatch));
 }
 
 }  // namespace
@@ -152,15 +165,17 @@ SceneSolution solve_scene(const Scene& scene, const SolveOptions& options) {
     throw std::invalid_argument("solve_scene: one operator H for every channel (fold_reflectivity must be false)");
   Stopwatch total;
   SolveOptions o = options;
-  // Per element: the triangle, inner normal, centroid, area and facet of the output field, and
-  // per channel rho, E, radiosity (twice: solution and field) and irradiance.
+  // Per element: the triangle, inner normal, centroid, area and facet of the output field, F = H 1
+  // (a scene that is not closed), and per channel rho, E, radiosity (twice: solution and field) and
+  // irradiance.
   o.result_bytes_per_element = sizeof(std::array<Vec3, 3>) + 2 * sizeof(Vec3) + sizeof(double) + sizeof(Index) +
-                               scene.num_channels() * 5 * sizeof(double);
+                               (scene.closed() ? 0 : sizeof(double)) + scene.num_channels() * 5 * sizeof(double);
   const RadiositySolver solver(scene, o);
   SceneSolution out;
   copy_setup(solver, out);
   out.shape = scene.shape();
   out.closed = scene.closed();
+  out.enclosed = scene.enclosed();
   const auto say = [&](const std::string& line) {
     if (options.progress) options.progress(line);
   };
@@ -173,7 +188,8 @@ SceneSolution solve_scene(const Scene& scene, const SolveOptions& options) {
   }
   // Expected size of the energy mismatch: a discretization effect (point-to-element form factors
   // are not reciprocal), measured at most 0.35 h/diam on the cube, prisms and the tetrahedron at
-  // levels 1-5 (tests/solve/test_scene_solver.cpp): 0.5 h/diam; a warning above 4 times that.
+  // levels 1-5 (tests/solve/test_scene_solver.cpp): 0.5 h/diam; the energy check fails above
+  // kEnergyMismatchAllowance = 4 times that.
   out.expected_energy_mismatch = 0.5 * out.mesh_size / out.diameter;
   // Channels that share their solution with an earlier one, or emit nothing, need no solve; the
   // others are solved together (RadiositySolver::solve_channels: one pass over the operator per
@@ -185,8 +201,11 @@ SceneSolution solve_scene(const Scene& scene, const SolveOptions& options) {
     out.channels.push_back(std::move(ch));
   }
   std::vector<ChannelSolve> solves = solver.solve_channels(to_solve);
+  // Outside a closed scene, F = H 1: the fraction of each point's light that lands on front sides.
+  std::optional<Eigen::VectorXd> seen;
+  if (!out.closed && !to_solve.empty()) seen = solver.irradiance(Eigen::VectorXd::Ones(out.n));
   for (std::size_t s = 0; s < to_solve.size(); ++s)
-    take_solve(std::move(solves[s]), out.field, to_solve[s], out.channels[to_solve[s]], say);
+    take_solve(std::move(solves[s]), out.field, to_solve[s], seen ? &*seen : nullptr, out.channels[to_solve[s]], say);
   for (std::size_t c = 0; c < scene.num_channels(); ++c) {
     ChannelSolution& ch = out.channels[c];
     if (!ch.shared_with.empty()) {  // copy the solution of the channel it shares (solved above)
@@ -196,6 +215,8 @@ SceneSolution solve_scene(const Scene& scene, const SolveOptions& options) {
       ch.name = name;
       ch.shared_with = shared;
     }
+    ch.energy_balanced = energy_balance_holds(ch.energy_mismatch, out.expected_energy_mismatch);
+    out.energy_balanced = out.energy_balanced && ch.energy_balanced;
     channel_warnings(ch, out);
   }
   out.solve_s = clock.seconds();
@@ -212,5 +233,12 @@ bool SceneSolution::converged() const {
 void SceneSolution::require_converged() const {
   for (const ChannelSolution& ch : channels) ch.require_converged();
 }
+
+void SceneSolution::require_energy_balance() const {
+  for (const ChannelSolution& ch : channels)
+    if (!ch.energy_balanced) throw EnergyBalanceError(energy_check_message(ch, expected_energy_mismatch));
+}
+
+bool energy_balance_holds(double mismatch, double expected) { return mismatch <= kEnergyMismatchAllowance * expected; }
 
 }  // namespace panelrad

@@ -50,6 +50,16 @@ struct SceneValidationReport {
                                    ///< path validate_closed_convex's count; on the general path the
                                    ///< triangles flipped to agree with most of their piece's area
                                    ///< (the storage convention below is not counted)
+  /// No light leaves the scene: every closed piece inside no other is an enclosure and every open
+  /// piece lies inside one of them, so every ray from a front side ends on a face (front or back).
+  /// True on the convex path.
+  bool enclosed = false;
+  /// Every ray from a front side ends on a front side: enclosed, and no part of an open piece is
+  /// left once the faces in contact were removed (its back side would take light that nothing
+  /// reflects or emits). Faces in contact do not open a scene: a box standing on the floor leaves
+  /// no hole, its bottom and the floor under it are both gone. Then the visible form factors at
+  /// every point sum to 1 and the energy balance emitted = absorbed holds. True on the convex path.
+  bool closed = false;
 };
 
 /// Validates `mesh` as a scene and orients it.
@@ -104,15 +114,21 @@ class ValidatedMesh {
  public:
   const TriangleMesh& mesh() const { return mesh_; }
   SceneShape shape() const { return shape_; }
+  /// SceneValidationReport::closed: every ray from a front side ends on a front side.
+  bool closed() const { return closed_; }
+  /// SceneValidationReport::enclosed: no light leaves the scene (it may end on a back side).
+  bool enclosed() const { return enclosed_; }
   /// The mesh, leaving this object empty (for the Scene that takes it over).
   TriangleMesh take_mesh() && { return std::move(mesh_); }
 
  private:
-  ValidatedMesh(TriangleMesh mesh, SceneShape shape) : mesh_(std::move(mesh)), shape_(shape) {}
+  ValidatedMesh(TriangleMesh mesh, const SceneValidationReport& report)
+      : mesh_(std::move(mesh)), shape_(report.shape), closed_(report.closed), enclosed_(report.enclosed) {}
   friend std::optional<ValidatedMesh> try_validate(TriangleMesh mesh, SceneValidationReport& report);
 
   TriangleMesh mesh_;
   SceneShape shape_;
+  bool closed_, enclosed_;
 };
 
 /// validate_scene on a mesh as read (input convention: open faces counter-clockwise seen from

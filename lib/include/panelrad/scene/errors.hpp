@@ -5,6 +5,8 @@
 //   TextFileError            an input file that cannot be read as text (size limit, NUL byte);
 //   SceneFileError           a scene file or its materials (file and line, facet or material);
 //   SolverError              an iteration that did not reach its tolerance (how far it got);
+//   EnergyBalanceError       a solution whose energy balance is far off its expected size (the
+//                            channel, the mismatch and that size);
 //   ResourceError            (support/error.hpp) a size that cannot fit in memory (the estimate and the limit), or
 //                            an allocation that failed anyway (the stage and the size).
 // A misuse of the API (an option out of range, vectors of the wrong size) is a
@@ -25,6 +27,13 @@ class SceneFileError : public Error {
 
 /// An iteration that did not reach its tolerance: says how far it got.
 class SolverError : public Error {
+ public:
+  using Error::Error;
+};
+
+/// A solution that breaks the conservation of energy far beyond its discretization error: names
+/// the channel, the mismatch and its expected size.
+class EnergyBalanceError : public Error {
  public:
   using Error::Error;
 };

@@ -57,10 +57,14 @@ class Scene {
   const geometry::TriangleMesh& mesh() const { return mesh_; }
   /// convex: proven by the exact check, V = 1 and no visibility work; general: V is computed.
   geometry::SceneShape shape() const { return shape_; }
-  /// Every edge of the triangulation is shared by exactly two triangles: each piece is a closed
-  /// body, so all light stays in the scene (the energy balance emitted = absorbed holds). False
-  /// for an open room, or a block standing on a floor it does not share edges with.
+  /// Every ray from a front side ends on a front side (geometry::SceneValidationReport::closed): a
+  /// closed room alone or with bodies in it, standing on its floor or not, so the visible form
+  /// factors at every point sum to 1 and the energy balance emitted = absorbed holds. False for an
+  /// open room, bodies with nothing around them, or a one-sided surface (its back takes light).
   bool closed() const { return closed_; }
+  /// No light leaves the scene (geometry::SceneValidationReport::enclosed): closed, or a room
+  /// with one-sided surfaces in it, whose back sides take the light that reaches them.
+  bool enclosed() const { return enclosed_; }
   Index num_facets() const { return mesh_.num_facets; }
   /// Inner unit normal of input triangle t (points into the solid), (2).
   Vec3 triangle_inner_normal(Index t) const;
@@ -130,7 +134,7 @@ class Scene {
   geometry::SceneShape shape_ = geometry::SceneShape::convex;
   geometry::TriangleMesh mesh_;
   std::vector<std::string> channels_;
-  bool closed_ = true;
+  bool closed_ = true, enclosed_ = true;
   std::vector<Channel> data_;
   SurfaceFunction solution_;
   double solution_tol_ = 1e-11;
