@@ -7,6 +7,7 @@ int main() {
   options.level = 3;  // n = 4^3 n0 elements
   const panelrad::SceneSolution solution = panelrad::solve_scene(scene, options);
   solution.require_converged();
+  solution.require_energy_balance();
   panelrad::write_outputs(solution, "cornell", {"csv", "png"});
   std::printf("n = %lld, %s\n", static_cast<long long>(solution.n), solution.method.c_str());
 }

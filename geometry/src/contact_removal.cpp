@@ -1,12 +1,13 @@
 // Faces in contact (validate_scene, scene_validation.hpp): two faces that overlap in one plane with
 // positive area and opposite front sides, as where a box stands on a floor, leans on a wall or
-// touches another box. The front side of each looks into the other's back side, so where the
-// other face belongs to a closed piece, what it looks into is solid matter: that part is not a
-// surface of the scene. It is cut out along the contact outline and removed; the rest of the face
-// stays, re-triangulated, with its facet id and front side. Where the other face belongs to an
-// open piece (a one-sided sheet, which bounds no matter), nothing is removed: a partition given as
-// two coincident sheets back to back keeps both. Overlaps with the same front side (z-fighting,
-// a face given twice) are refused.
+// touches another box. The front side of each looks into the other's back side: solid matter
+// where the other face belongs to a closed piece, the opaque back of a one-sided sheet where it
+// belongs to an open one (a block's bottom on a floor given as a sheet). Either way that part sees
+// nothing and is seen by nothing: it is not a surface of the scene. It is cut out along the
+// contact outline and removed from both faces; the rest of each stays, re-triangulated, with its
+// facet id and front side. Two open sheets back to back keep both (a two-sided sheet); an open
+// sheet's face that would vanish whole is refused (a window written on a wall). Overlaps with the
+// same front side (z-fighting, a face given twice) are refused.
 //
 // The geometry is exact: the triangles are projected to the coordinate plane that drops the
 // dominant axis of their common plane (exact: the two other coordinates are kept), the triangle
@@ -357,9 +358,12 @@ std::optional<Failure> remove_contacts(TriangleMesh& mesh, const std::vector<Ove
       continue;
     }
     if (o.across_gap) ++out.across_gap;
-    // Opposite front sides: each covers the other where the other's back is solid matter.
-    if (in_closed_piece[at(j)]) covers[at(i)].push_back(j);
-    if (in_closed_piece[at(i)]) covers[at(j)].push_back(i);
+    // Opposite front sides, one of them bounding matter: each covers the other. A face against a
+    // closed piece's face looks into its solid; a face against an open sheet's back (a block's
+    // bottom on a one-sided floor) looks into that opaque back at distance 0, so it sees nothing
+    // and nothing sees it: neither is a surface of the scene there.
+    covers[at(i)].push_back(j);
+    covers[at(j)].push_back(i);
   }
   CutMesh cut = cut_covered(mesh, covers, resolution);
   for (Sz f = 0; f < cut.removed_of_facet.size(); ++f) out.removed_of_facet[f] += cut.removed_of_facet[f];
