@@ -87,9 +87,14 @@ TEST(FacetPlanes, CornellBoxLightInTheCeilingPlane) {
   const pg::TriangleMesh m = pg::load_scene_mesh(kScenes + "cornell_box.obj").mesh();
   const std::vector<Index> plane = pg::facet_planes(m);
   ASSERT_EQ(plane.size(), static_cast<std::size_t>(m.num_facets));
+  // The blocks' bottoms (faces 22 and 23) lie against the floor's back and leave the scene: no
+  // triangle, no plane to compare.
+  std::vector<bool> present(static_cast<std::size_t>(m.num_facets), false);
+  for (Index f : m.facet_of_triangle) present[static_cast<std::size_t>(f)] = true;
   std::size_t together = 0;
   for (Index f = 0; f < m.num_facets; ++f)
     for (Index g = 0; g < m.num_facets; ++g) {
+      if (!present[static_cast<std::size_t>(f)] || !present[static_cast<std::size_t>(g)]) continue;
       const bool same = plane[static_cast<std::size_t>(f)] == plane[static_cast<std::size_t>(g)];
       EXPECT_EQ(same, near_plane(m, f, g, 1e-9 * 560)) << f << " " << g;
       together += f != g && same;
@@ -104,7 +109,7 @@ TEST(FacetPlanes, CornellBoxLightInTheCeilingPlane) {
   };
   std::size_t same_height = 0;
   for (Index g = 0; g < m.num_facets; ++g)
-    if (g != 7 && near_plane(m, 7, g, 1e-9)) {
+    if (g != 7 && present[static_cast<std::size_t>(g)] && near_plane(m, 7, g, 1e-9)) {
       ++same_height;
       EXPECT_EQ(plane[7], plane[static_cast<std::size_t>(g)]);
       EXPECT_DOUBLE_EQ(y_of(g), y_of(7));
