@@ -52,15 +52,16 @@ struct ContactReport {
 bool merge_contacts_into_closed_pieces(TriangleMesh& mesh, std::vector<Overlap>& overlaps, ScenePieces& pieces,
                                        const ContactTolerance& tolerance, ContactReport& out);
 
-/// `overlaps`: pairs of triangles that overlap with positive area in one plane (check_no_crossing),
-/// or across a gap below `resolution` (faces_across_a_gap).
+/// `overlaps`: pairs of triangles that overlap with positive area in one plane or within the
+/// rounding (check_no_crossing), or across a gap below the tolerance (faces_across_a_gap).
 /// `in_closed_piece`: per triangle, whether its piece is closed (bounds matter). Needs the front
 /// sides of orient_scene_pieces (triangles clockwise seen from the front). Refuses overlaps with
 /// the same front side (rule "crossing"), and an open piece's face that would be removed whole
 /// (its front looking into a solid: a window written on a wall); keeps back-to-back overlaps of
-/// two open pieces (a two-sided sheet: each is seen from its own front side); otherwise cuts each triangle along the outlines of the
-/// triangles of closed pieces that cover it and removes the covered part, keeping facet ids and
-/// front sides, and drops the vertices no triangle uses any more.
+/// two open pieces (a two-sided sheet: each is seen from its own front side); otherwise cuts each
+/// triangle along the outlines of the triangles that cover it (opposite front sides, one of the two
+/// in a closed piece) and removes the covered part, keeping facet ids and front sides, and drops
+/// the vertices no triangle uses any more.
 std::optional<Failure> remove_contacts(TriangleMesh& mesh, const std::vector<Overlap>& overlaps,
                                        const std::vector<char>& in_closed_piece, double resolution,
                                        ContactReport& out);
