@@ -314,7 +314,7 @@ std::vector<Overlap> faces_across_a_gap(const TriangleMesh& mesh, const ContactT
 
 std::optional<Failure> remove_contacts(TriangleMesh& mesh, const std::vector<Overlap>& overlaps,
                                        const std::vector<char>& in_closed_piece, double resolution,
-                                       ContactReport& out) {
+                                       double sliver, ContactReport& out) {
   out.removed_of_facet.resize(at(mesh.num_facets), 0.0);
   if (overlaps.empty()) return std::nullopt;
   const Describe d{mesh};
@@ -365,7 +365,7 @@ std::optional<Failure> remove_contacts(TriangleMesh& mesh, const std::vector<Ove
     covers[at(i)].push_back(j);
     covers[at(j)].push_back(i);
   }
-  CutMesh cut = cut_covered(mesh, covers, resolution);
+  CutMesh cut = cut_covered(mesh, covers, sliver);
   for (Sz f = 0; f < cut.removed_of_facet.size(); ++f) out.removed_of_facet[f] += cut.removed_of_facet[f];
   out.triangles_cut += cut.triangles_cut;
   // An open piece's face wholly against a solid's face, its front side looking into the matter:

@@ -62,9 +62,11 @@ bool merge_contacts_into_closed_pieces(TriangleMesh& mesh, std::vector<Overlap>&
 /// triangle along the outlines of the triangles that cover it (opposite front sides, one of the two
 /// in a closed piece) and removes the covered part, keeping facet ids and front sides, and drops
 /// the vertices no triangle uses any more.
+/// Pieces of the cut no higher than `sliver` are dropped (a slit within the tolerance of the
+/// contact: the visibility's resolution, or the rounding of the coordinates as written).
 std::optional<Failure> remove_contacts(TriangleMesh& mesh, const std::vector<Overlap>& overlaps,
                                        const std::vector<char>& in_closed_piece, double resolution,
-                                       ContactReport& out);
+                                       double sliver, ContactReport& out);
 
 /// Pairs of triangles of different input faces, each strictly on one side of the other's plane
 /// and every corner within the pair's tolerance of it (`tolerance`: the visibility's resolution, or the rounding

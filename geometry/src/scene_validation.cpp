@@ -166,7 +166,8 @@ SceneValidationReport validate_scene(TriangleMesh& mesh) {
   for (const Overlap& o : overlaps)
     if (o.within_rounding) to_close.push_back(o);
   close_gaps(mesh, to_close);
-  if (auto f = remove_contacts(mesh, overlaps, pieces.in_closed_piece, resolution, contacts)) {
+  if (auto f = remove_contacts(mesh, overlaps, pieces.in_closed_piece, resolution,
+                                largest_tolerance(tolerance, diameter(mesh)), contacts)) {
     mesh = input;
     return rejected(std::move(report), *f);
   }
