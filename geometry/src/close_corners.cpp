@@ -4,11 +4,14 @@
 // from an old one, would otherwise keep triangles thinner than any element the subdivision can
 // halve (their midpoints round onto one line), and slits the visibility cannot resolve.
 //
-// Candidates by a sweep along x over the corners sorted by x; a pair closer than the tolerance in
-// every coordinate (so closer than sqrt(3) times it) joins; each class of joined corners becomes its
+// Candidates by box intersection: a pair closer than the tolerance in every coordinate (so closer
+// than sqrt(3) times it) joins; each class of joined corners becomes its
 // lowest-numbered corner, whose coordinates are kept. A triangle left with two equal corners, or
 // with three collinear ones (exact), is a sliver of the joined corners and is dropped.
 #include "contact_removal.hpp"
+
+#include <CGAL/Bbox_3.h>
+#include <CGAL/box_intersection_d.h>
 
 #include <algorithm>
 #include <cmath>
@@ -20,9 +23,22 @@ namespace panelrad::geometry::validation_detail {
 Sz join_close_corners(TriangleMesh& mesh, double tolerance, std::vector<Index>* origin) {
   const Sz nv = mesh.vertices.size();
   if (!(tolerance > 0) || nv < 2) return 0;
-  std::vector<Index> order(nv);
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](Index a, Index b) { return mesh.vertices[at(a)].x() < mesh.vertices[at(b)].x(); });
+  // Pairs closer than the tolerance in every coordinate: boxes of side `tolerance` around the
+  // corners intersect (CGAL::box_self_intersection_d, O(n log n) plus the pairs).
+  using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, Index>;
+  std::vector<Box> boxes;
+  boxes.reserve(nv);
+  const double h = tolerance / 2;
+  for (Sz v = 0; v < nv; ++v) {
+    const Vec3& x = mesh.vertices[v];
+    boxes.emplace_back(CGAL::Bbox_3(x.x() - h, x.y() - h, x.z() - h, x.x() + h, x.y() + h, x.z() + h),
+                       static_cast<Index>(v));
+  }
+  std::vector<std::pair<Index, Index>> close;
+  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& a, const Box& b) {
+    close.emplace_back(std::min(a.info(), b.info()), std::max(a.info(), b.info()));
+  });
+  std::sort(close.begin(), close.end());  // the same classes whatever order the pairs come in
   std::vector<Index> parent(nv);
   std::iota(parent.begin(), parent.end(), 0);
   const std::function<Index(Index)> root = [&](Index v) {
@@ -30,16 +46,12 @@ Sz join_close_corners(TriangleMesh& mesh, double tolerance, std::vector<Index>* 
     return v;
   };
   Sz joined = 0;
-  for (Sz a = 0; a < nv; ++a)
-    for (Sz b = a + 1; b < nv; ++b) {
-      const Vec3 &p = mesh.vertices[at(order[a])], &q = mesh.vertices[at(order[b])];
-      if (q.x() - p.x() > tolerance) break;
-      if ((q - p).cwiseAbs().maxCoeff() > tolerance) continue;
-      const Index ra = root(order[a]), rb = root(order[b]);
-      if (ra == rb) continue;
-      parent[at(std::max(ra, rb))] = std::min(ra, rb);
-      ++joined;
-    }
+  for (const auto& [a, b] : close) {
+    const Index ra = root(a), rb = root(b);
+    if (ra == rb) continue;
+    parent[at(std::max(ra, rb))] = std::min(ra, rb);
+    ++joined;
+  }
   if (joined == 0) return 0;
   const std::vector<Point> p = exact_points(mesh);
   std::vector<std::array<Index, 3>> triangles;
@@ -56,12 +68,16 @@ Sz join_close_corners(TriangleMesh& mesh, double tolerance, std::vector<Index>* 
   if (origin) *origin = std::move(kept_origin);
   mesh.triangles = std::move(triangles);
   mesh.facet_of_triangle = std::move(facets);
-  // Drop the corners no triangle uses any more, keeping the order of the others.
-  std::vector<Index> index(nv, kNone);
+  drop_unused_vertices(mesh);
+  return joined;
+}
+
+void drop_unused_vertices(TriangleMesh& mesh) {
+  std::vector<Index> index(mesh.vertices.size(), kNone);
   for (const Tri& tr : mesh.triangles)
     for (Index v : tr) index[at(v)] = 0;
   Index next = 0;
-  for (Sz v = 0; v < nv; ++v)
+  for (Sz v = 0; v < index.size(); ++v)
     if (index[v] == 0) {
       index[v] = next;
       mesh.vertices[at(next++)] = mesh.vertices[v];
@@ -69,7 +85,6 @@ Sz join_close_corners(TriangleMesh& mesh, double tolerance, std::vector<Index>* 
   mesh.vertices.resize(at(next));
   for (Tri& tr : mesh.triangles)
     for (Index& v : tr) v = index[at(v)];
-  return joined;
 }
 
 }  // namespace panelrad::geometry::validation_detail

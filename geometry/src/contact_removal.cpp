@@ -154,8 +154,8 @@ struct CutMesh {
 };
 
 /// Each triangle t minus the union of covers[t] (triangles coplanar with it), re-triangulated by
-/// remainder(), without the pieces no higher than `sliver`; the others kept as they are. Facet ids and orientations kept; vertices no
-/// triangle uses any more dropped, the order of the others kept.
+/// remainder(), without the pieces no higher than `sliver`; the others kept as they are. Facet ids
+/// and orientations kept; vertices no triangle uses any more dropped, the order of the others kept.
 CutMesh cut_covered(const TriangleMesh& mesh, const std::vector<std::vector<Index>>& covers, double sliver) {
   CutMesh out;
   out.mesh.num_facets = mesh.num_facets;
@@ -195,16 +195,8 @@ CutMesh cut_covered(const TriangleMesh& mesh, const std::vector<std::vector<Inde
     out.removed_of_facet[at(f)] += std::max(0.0, whole - kept);
     ++out.triangles_cut;
   }
-  std::vector<Index> index(vertices.size(), kNone);
-  for (const Tri& tr : out.mesh.triangles)
-    for (Index v : tr) index[at(v)] = 0;
-  for (Sz v = 0; v < index.size(); ++v)
-    if (index[v] == 0) {
-      index[v] = static_cast<Index>(out.mesh.vertices.size());
-      out.mesh.vertices.push_back(vertices[v]);
-    }
-  for (Tri& tr : out.mesh.triangles)
-    for (Index& v : tr) v = index[at(v)];
+  out.mesh.vertices = std::move(vertices);
+  drop_unused_vertices(out.mesh);
   return out;
 }
 
@@ -256,6 +248,8 @@ std::vector<Overlap> faces_across_a_gap(const TriangleMesh& mesh, const ContactT
   using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, Index>;
   std::vector<Box> boxes;
   boxes.reserve(mesh.triangles.size());
+  // Wide enough for any pair of the scene.
+  const double resolution = largest_tolerance(tolerance, diameter(mesh));
   const auto size_of = [&](const Tri& t) {
     double s = 0;
     for (int k = 0; k < 3; ++k) s = std::max(s, (mesh.vertices[at(t[at(k)])] - mesh.vertices[at(t[at((k + 1) % 3)])]).norm());
@@ -264,10 +258,6 @@ std::vector<Overlap> faces_across_a_gap(const TriangleMesh& mesh, const ContactT
   for (Sz t = 0; t < mesh.triangles.size(); ++t) {
     const Tri& tr = mesh.triangles[t];
     CGAL::Bbox_3 b = p[at(tr[0])].bbox() + p[at(tr[1])].bbox() + p[at(tr[2])].bbox();
-    // Wide enough for any pair: the tolerance of a pair is its larger face's at most, and the
-    // size of a pair at least its larger triangle's.
-    const double f = mesh.facet_of_triangle[t];
-    const double resolution = tolerance.of(static_cast<Index>(f), static_cast<Index>(f), 2 * size_of(tr)) * 1.000001;
     b = CGAL::Bbox_3(b.xmin() - resolution, b.ymin() - resolution, b.zmin() - resolution, b.xmax() + resolution,
                      b.ymax() + resolution, b.zmax() + resolution);
     boxes.emplace_back(b, static_cast<Index>(t));
@@ -278,10 +268,10 @@ std::vector<Overlap> faces_across_a_gap(const TriangleMesh& mesh, const ContactT
   });
   std::sort(candidates.begin(), candidates.end());
   candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-  const auto near_plane = [&](const Tri& t, const Tri& u, double resolution) {
+  const auto near_plane = [&](const Tri& t, const Tri& u, double tol) {
     const Vec3 &a = mesh.vertices[at(t[0])], &b = mesh.vertices[at(t[1])], &c = mesh.vertices[at(t[2])];
     for (Index v : u)
-      if (!(std::abs(plane_distance(a, b, c, mesh.vertices[at(v)])) <= resolution)) return false;
+      if (!(std::abs(plane_distance(a, b, c, mesh.vertices[at(v)])) <= tol)) return false;
     return true;
   };
   for (const auto& [i, j] : candidates) {
@@ -294,19 +284,14 @@ std::vector<Overlap> faces_across_a_gap(const TriangleMesh& mesh, const ContactT
     if (si == 0 || sj == 0) continue;
     const Index fi = mesh.facet_of_triangle[at(i)], fj = mesh.facet_of_triangle[at(j)];
     const double size = std::max(size_of(ti), size_of(tj));
-    double resolution = tolerance.of(fi, fj, size);
-    if (si == -1 && sj == -1) {
-      // Back to back, neither sees the other: apart, unless within the rounding of their
-      // corners as written (a box's bottom an ulp below the floor it stands on: in contact).
-      const double r = std::max(at(fi) < tolerance.rounding.size() ? tolerance.rounding[at(fi)] : 0.0,
-                                at(fj) < tolerance.rounding.size() ? tolerance.rounding[at(fj)] : 0.0);
-      resolution = std::min(8 * r, 1e-4 * size);
-      if (!(resolution > 0)) continue;
-    }
-    if (!near_plane(ti, tj, resolution) || !near_plane(tj, ti, resolution)) continue;
-    if (!projections_overlap(mesh, ti, tj, resolution)) continue;
-    const Vec3 ci = (mesh.vertices[at(ti[0])] + mesh.vertices[at(ti[1])] + mesh.vertices[at(ti[2])]) / 3.0;
+    // Back to back, neither sees the other: apart, unless within the rounding of their corners
+    // as written (a box's bottom an ulp below the floor it stands on: in contact).
     const bool back_to_back = si == -1 && sj == -1;
+    const double tol = back_to_back ? rounding_tolerance(tolerance, fi, fj, size) : tolerance.of(fi, fj, size);
+    if (!(tol > 0)) continue;
+    if (!near_plane(ti, tj, tol) || !near_plane(tj, ti, tol)) continue;
+    if (!projections_overlap(mesh, ti, tj, tol)) continue;
+    const Vec3 ci = (mesh.vertices[at(ti[0])] + mesh.vertices[at(ti[1])] + mesh.vertices[at(ti[2])]) / 3.0;
     out.push_back({i, j, ci, !back_to_back, back_to_back});
   }
   return out;

@@ -15,8 +15,14 @@ namespace panelrad::geometry::validation_detail {
 /// rounding of their corners only touch.
 bool projections_overlap(const TriangleMesh& mesh, const Tri& t, const Tri& u, double tol);
 
-/// The largest tolerance of any pair of faces of a scene of size `size` (written_rounding.cpp).
+/// The part of ContactTolerance::of that comes from the rounding of faces f and g as written
+/// alone (0 for exact coordinates), and the largest tolerance of any pair of faces of a scene of
+/// size `size` (written_rounding.cpp).
+double rounding_tolerance(const ContactTolerance& tolerance, Index f, Index g, double pair_size);
 double largest_tolerance(const ContactTolerance& tolerance, double size);
+
+/// Drops the vertices no triangle uses, keeping the order of the others (close_corners.cpp).
+void drop_unused_vertices(TriangleMesh& mesh);
 
 /// Joins the corners closer than `tolerance` in every coordinate into one (the lowest-numbered of
 /// each class keeps its coordinates) and drops the triangles that this leaves with two equal or

@@ -231,10 +231,11 @@ std::optional<Failure> check_no_crossing(const TriangleMesh& mesh, const std::ve
       // ways is a gap: faces_across_a_gap).
       if (tolerance && overlaps && fi != fj) {
         const Tri &ti = mesh.triangles[at(i)], &tj = mesh.triangles[at(j)];
-        if (straddles(pts, ti, tj) != 0 && !(strictly_one_side(pts, ti, tj) && strictly_one_side(pts, tj, ti)) &&
-            within_of(mesh, ti, tj, pair_tolerance(mesh, ti, tj, *tolerance, fi, fj)) &&
-            projections_overlap(mesh, ti, tj, pair_tolerance(mesh, ti, tj, *tolerance, fi, fj)))
-          overlaps->push_back({i, j, centroid_of(mesh, ti), false, true});
+        if (straddles(pts, ti, tj) != 0 && !(strictly_one_side(pts, ti, tj) && strictly_one_side(pts, tj, ti))) {
+          const double tol = pair_tolerance(mesh, ti, tj, *tolerance, fi, fj);
+          if (within_of(mesh, ti, tj, tol) && projections_overlap(mesh, ti, tj, tol))
+            overlaps->push_back({i, j, centroid_of(mesh, ti), false, true});
+        }
       }
       continue;
     }

@@ -65,11 +65,15 @@ std::vector<double> facet_rounding(const TriangleMesh& mesh) {
 ContactTolerance::ContactTolerance(const TriangleMesh& mesh, double resolution_)
     : resolution(resolution_), rounding(facet_rounding(mesh)) {}
 
-double ContactTolerance::of(Index f, Index g, double pair_size) const {
+double rounding_tolerance(const ContactTolerance& tolerance, Index f, Index g, double pair_size) {
   double r = 0;
-  if (at(f) < rounding.size()) r = std::max(r, rounding[at(f)]);
-  if (at(g) < rounding.size()) r = std::max(r, rounding[at(g)]);
-  return std::max(resolution, std::min(8 * r, 1e-4 * pair_size));
+  for (Index x : {f, g})
+    if (x >= 0 && at(x) < tolerance.rounding.size()) r = std::max(r, tolerance.rounding[at(x)]);
+  return std::min(8 * r, 1e-4 * pair_size);
+}
+
+double ContactTolerance::of(Index f, Index g, double pair_size) const {
+  return std::max(resolution, rounding_tolerance(*this, f, g, pair_size));
 }
 
 double largest_tolerance(const ContactTolerance& tolerance, double size) {
