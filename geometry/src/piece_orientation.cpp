@@ -167,7 +167,16 @@ bool box_inside(const CGAL::Bbox_3& inner, const CGAL::Bbox_3& outer) {
 /// inside nor outside).
 constexpr Sz kNestingSamples = 64;
 
-std::optional<bool> lies_inside(const TriangleMesh& inner, bool inner_closed, const ClosedSurface& outer) {
+/// Which side of a closed piece's geometric normals is its solid: against them when it runs
+/// counter-clockwise from outside (volume_sign > 0); 0 for an open piece.
+double into_solid(const TriangleMesh& piece, bool closed) {
+  if (!closed) return 0.0;
+  return volume_sign(piece, piece.vertices[0]) > 0 ? -1.0 : 1.0;
+}
+
+/// `into`: -1 or +1, the side of the geometric normals that is the inner piece's solid (into_solid),
+/// 0 for an open piece.
+std::optional<bool> lies_inside(const TriangleMesh& inner, double into, const ClosedSurface& outer) {
   const SideOfMesh& side = *outer.side;
   Sz in = 0, out = 0;
   const auto vote = [&](const Vec3& x) {
@@ -175,8 +184,6 @@ std::optional<bool> lies_inside(const TriangleMesh& inner, bool inner_closed, co
     in += s == CGAL::ON_BOUNDED_SIDE;
     out += s == CGAL::ON_UNBOUNDED_SIDE;
   };
-  // Into the solid: against the geometric normal when the piece runs counter-clockwise from outside.
-  const double into = !inner_closed ? 0.0 : volume_sign(inner, inner.vertices[0]) > 0 ? -1.0 : 1.0;
   const Sz nt = inner.triangles.size();
   for (Sz k = 0; k < nt; k += std::max<Sz>(1, nt / kNestingSamples)) {
     const Tri& t = inner.triangles[k];
@@ -366,6 +373,8 @@ std::optional<Failure> orient_scene_pieces(TriangleMesh& mesh, ScenePieces& out)
     if (pieces[i].closed) closed.push_back(static_cast<Index>(i));
   std::vector<TriangleMesh> piece_meshes(pieces.size());
   for (Sz i = 0; i < pieces.size(); ++i) piece_meshes[i] = piece_mesh(mesh, pieces[i]);
+  std::vector<double> into(pieces.size());
+  for (Sz i = 0; i < pieces.size(); ++i) into[i] = into_solid(piece_meshes[i], pieces[i].closed);
   std::vector<std::unique_ptr<ClosedSurface>> surfaces(pieces.size());
   if (pieces.size() > 1)
     for (Index i : closed) surfaces[at(i)] = closed_surface(piece_meshes[at(i)]);
@@ -374,7 +383,7 @@ std::optional<Failure> orient_scene_pieces(TriangleMesh& mesh, ScenePieces& out)
   // +1 inside, -1 outside, 0 on the surface (neither).
   const auto where = [&](Sz inner, Index outer) {
     if (!box_inside(boxes[inner], surfaces[at(outer)]->box)) return -1;
-    const std::optional<bool> in = lies_inside(piece_meshes[inner], pieces[inner].closed, *surfaces[at(outer)]);
+    const std::optional<bool> in = lies_inside(piece_meshes[inner], into[inner], *surfaces[at(outer)]);
     return !in ? 0 : *in ? 1 : -1;
   };
   for (Index a : closed)
