@@ -21,8 +21,9 @@ ctest --test-dir build --output-on-failure -L mpi
 cmake -S . -B build -DPANELRAD_MPI=OFF
 cmake --build build -j "$(nproc)" --target panelrad_cli
 
-# Second build with -fsanitize=address,undefined (PANELRAD_SANITIZE): -O1 with debug information and
-# with assertions (no NDEBUG: Eigen's and CGAL's own checks are on too). Examples and benchmarks are
+# Second build with -fsanitize=address,undefined (PANELRAD_SANITIZE): -O1 with line tables (-g1: a
+# report names file and line; full debug information would double the objects and slow every link)
+# and with assertions (no NDEBUG: Eigen's and CGAL's own checks are on too). Examples and benchmarks are
 # not needed by the tests and are left out. Excluded from this run:
 #  - package_consumer: installs the instrumented static libraries and links an outside project
 #    without -fsanitize (undefined __asan_* symbols); a packaging test, run by the Release build;
@@ -31,7 +32,7 @@ cmake --build build -j "$(nproc)" --target panelrad_cli
 #    other stress and fast-operator tests;
 #  - the tests labelled "slow" (the paper's tables at n = 3072 and 12288, dense setup of a
 #    12288 x 12288 matrix): the same code runs at n <= 768 in the other tests.
-cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g" \
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" \
   -DPANELRAD_SANITIZE=ON -DPANELRAD_BUILD_EXAMPLES=OFF -DPANELRAD_BUILD_BENCH=OFF
 cmake --build build-asan -j "$(nproc)"
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \

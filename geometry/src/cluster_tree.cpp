@@ -412,12 +412,8 @@ ClusterTree::ClusterTree(const TriangleMesh& mesh, int finest_level, std::size_t
   diameter_ = bounding_box_diameter(corners);
 
   // --- supporting planes of the roots (coplanar clusters, section 4.2 case (a)) -------------------
-  const std::vector<Index> facet_plane = facet_planes(mesh, planes);
-  root_plane_.resize(static_cast<std::size_t>(n0));
-  for (Index k = 0; k < n0; ++k) {
-    root_plane_[static_cast<std::size_t>(k)] = facet_plane[static_cast<std::size_t>(roots[static_cast<std::size_t>(k)].facet)];
-    num_planes_ = std::max(num_planes_, root_plane_[static_cast<std::size_t>(k)] + 1);
-  }
+  root_plane_ = triangle_planes(mesh, planes);
+  for (Index p : root_plane_) num_planes_ = std::max(num_planes_, p + 1);
 }
 
 }  // namespace panelrad::geometry

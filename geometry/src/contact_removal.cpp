@@ -241,39 +241,49 @@ bool projections_overlap(const TriangleMesh& mesh, const Tri& t, const Tri& u, d
   return !separated(t, u) && !separated(u, t);
 }
 
+std::vector<std::pair<Index, Index>> nearby_triangle_pairs(const TriangleMesh& mesh, double widen) {
+  using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, Index>;
+  std::vector<Box> boxes;
+  boxes.reserve(mesh.triangles.size());
+  for (Sz t = 0; t < mesh.triangles.size(); ++t) {
+    Vec3 lo = mesh.vertices[at(mesh.triangles[t][0])], hi = lo;
+    for (Index v : mesh.triangles[t]) {
+      lo = lo.cwiseMin(mesh.vertices[at(v)]);
+      hi = hi.cwiseMax(mesh.vertices[at(v)]);
+    }
+    boxes.emplace_back(CGAL::Bbox_3(lo.x() - widen, lo.y() - widen, lo.z() - widen, hi.x() + widen, hi.y() + widen,
+                                    hi.z() + widen),
+                       static_cast<Index>(t));
+  }
+  std::vector<std::pair<Index, Index>> pairs;
+  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& a, const Box& b) {
+    pairs.emplace_back(std::min(a.info(), b.info()), std::max(a.info(), b.info()));
+  });
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  return pairs;
+}
+
+bool corners_near_plane(const TriangleMesh& mesh, const Tri& t, const Tri& u, double tol) {
+  const Vec3 &a = mesh.vertices[at(t[0])], &b = mesh.vertices[at(t[1])], &c = mesh.vertices[at(t[2])];
+  for (Index v : u)
+    if (!(std::abs(plane_distance(a, b, c, mesh.vertices[at(v)])) <= tol)) return false;
+  return true;
+}
+
+double longest_edge(const TriangleMesh& mesh, const Tri& t) {
+  double s = 0;
+  for (int k = 0; k < 3; ++k) s = std::max(s, (mesh.vertices[at(t[at(k)])] - mesh.vertices[at(t[at((k + 1) % 3)])]).norm());
+  return s;
+}
+
 std::vector<Overlap> faces_across_a_gap(const TriangleMesh& mesh, const ContactTolerance& tolerance) {
   std::vector<Overlap> out;
   if (!(tolerance.resolution > 0)) return out;
   const std::vector<Point> p = exact_points(mesh);
-  using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, Index>;
-  std::vector<Box> boxes;
-  boxes.reserve(mesh.triangles.size());
   // Wide enough for any pair of the scene.
-  const double resolution = largest_tolerance(tolerance, diameter(mesh));
-  const auto size_of = [&](const Tri& t) {
-    double s = 0;
-    for (int k = 0; k < 3; ++k) s = std::max(s, (mesh.vertices[at(t[at(k)])] - mesh.vertices[at(t[at((k + 1) % 3)])]).norm());
-    return s;
-  };
-  for (Sz t = 0; t < mesh.triangles.size(); ++t) {
-    const Tri& tr = mesh.triangles[t];
-    CGAL::Bbox_3 b = p[at(tr[0])].bbox() + p[at(tr[1])].bbox() + p[at(tr[2])].bbox();
-    b = CGAL::Bbox_3(b.xmin() - resolution, b.ymin() - resolution, b.zmin() - resolution, b.xmax() + resolution,
-                     b.ymax() + resolution, b.zmax() + resolution);
-    boxes.emplace_back(b, static_cast<Index>(t));
-  }
-  std::vector<std::pair<Index, Index>> candidates;
-  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& a, const Box& b) {
-    candidates.emplace_back(std::min(a.info(), b.info()), std::max(a.info(), b.info()));
-  });
-  std::sort(candidates.begin(), candidates.end());
-  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-  const auto near_plane = [&](const Tri& t, const Tri& u, double tol) {
-    const Vec3 &a = mesh.vertices[at(t[0])], &b = mesh.vertices[at(t[1])], &c = mesh.vertices[at(t[2])];
-    for (Index v : u)
-      if (!(std::abs(plane_distance(a, b, c, mesh.vertices[at(v)])) <= tol)) return false;
-    return true;
-  };
+  const std::vector<std::pair<Index, Index>> candidates =
+      nearby_triangle_pairs(mesh, largest_tolerance(tolerance, diameter(mesh)));
   for (const auto& [i, j] : candidates) {
     const Tri &ti = mesh.triangles[at(i)], &tj = mesh.triangles[at(j)];
     if (mesh.facet_of_triangle[at(i)] == mesh.facet_of_triangle[at(j)]) continue;
@@ -283,13 +293,13 @@ std::vector<Overlap> faces_across_a_gap(const TriangleMesh& mesh, const ContactT
     const int si = side_of(p, ti, tj), sj = side_of(p, tj, ti);
     if (si == 0 || sj == 0) continue;
     const Index fi = mesh.facet_of_triangle[at(i)], fj = mesh.facet_of_triangle[at(j)];
-    const double size = std::max(size_of(ti), size_of(tj));
+    const double size = std::max(longest_edge(mesh, ti), longest_edge(mesh, tj));
     // Back to back, neither sees the other: apart, unless within the rounding of their corners
     // as written (a box's bottom an ulp below the floor it stands on: in contact).
     const bool back_to_back = si == -1 && sj == -1;
     const double tol = back_to_back ? rounding_tolerance(tolerance, fi, fj, size) : tolerance.of(fi, fj, size);
     if (!(tol > 0)) continue;
-    if (!near_plane(ti, tj, tol) || !near_plane(tj, ti, tol)) continue;
+    if (!corners_near_plane(mesh, ti, tj, tol) || !corners_near_plane(mesh, tj, ti, tol)) continue;
     if (!projections_overlap(mesh, ti, tj, tol)) continue;
     const Vec3 ci = (mesh.vertices[at(ti[0])] + mesh.vertices[at(ti[1])] + mesh.vertices[at(ti[2])]) / 3.0;
     out.push_back({i, j, ci, !back_to_back, back_to_back});
@@ -305,7 +315,15 @@ std::optional<Failure> remove_contacts(TriangleMesh& mesh, const std::vector<Ove
   const Describe d{mesh};
   const Sz nt = mesh.triangles.size();
   std::vector<std::vector<Index>> covers(nt);
-  const auto point_text = [](const Vec3& x) { return "(" + num(x.x()) + ", " + num(x.y()) + ", " + num(x.z()) + ")"; };
+  const auto point_text = [](const Vec3& x) {
+    std::string s = "(";  // appended piece by piece: GCC 12 warns (-Wrestrict) on "(" + std::string
+    s += num(x.x());
+    s += ", ";
+    s += num(x.y());
+    s += ", ";
+    s += num(x.z());
+    return s + ")";
+  };
   for (const Overlap& o : overlaps) {
     const Index i = o.i, j = o.j;
     const Tri &ti = mesh.triangles[at(i)], &tj = mesh.triangles[at(j)];
@@ -418,12 +436,10 @@ std::vector<ContactReport::Touch> ContactReport::touching() const {
 bool merge_contacts_into_closed_pieces(TriangleMesh& mesh, std::vector<Overlap>& overlaps, ScenePieces& pieces,
                                        const ContactTolerance& tolerance, ContactReport& out) {
   const Sz nt = mesh.triangles.size();
-  // Candidates: overlaps in one plane (or within the rounding) between open pieces as the faces
-  // are written, wound either way (a solid wound against the other: its pieces are oriented once
-  // joined).
-  std::vector<Overlap> candidates;
-  for (const Overlap& o : overlaps)
-    if (!o.across_gap) candidates.push_back(o);
+  // Candidates: overlaps in one plane (or within the rounding, or across a gap below the
+  // tolerance) between open pieces as the faces are written, wound either way (a solid wound
+  // against the other: its pieces are oriented once joined).
+  std::vector<Overlap> candidates = overlaps;
   if (candidates.empty()) return false;
   ScenePieces written;
   {
@@ -454,7 +470,7 @@ bool merge_contacts_into_closed_pieces(TriangleMesh& mesh, std::vector<Overlap>&
         covers[at(o.i)].push_back(o.j);
         covers[at(o.j)].push_back(o.i);
       }
-    CutMesh cut = cut_covered(mesh, covers, tolerance.resolution);
+    CutMesh cut = cut_covered(mesh, covers, largest_tolerance(tolerance, diameter(mesh)));
     join_close_corners(cut.mesh, tolerance.resolution, &cut.origin);
     if (cut.mesh.triangles.empty()) return false;
     // The cut leaves a side of a solid whose edge the other solid's sides now meet in two pieces

@@ -31,6 +31,14 @@ void drop_unused_vertices(TriangleMesh& mesh);
 /// value per triangle and is kept for the triangles kept.
 Sz join_close_corners(TriangleMesh& mesh, double tolerance, std::vector<Index>* origin = nullptr);
 
+/// Faces whose coordinates were written rounded (their ContactTolerance above the resolution),
+/// moved back onto the planes they stand for: triangles within the tolerance of each other's plane
+/// and touching or overlapping within it (one face's triangles, flush sides, faces in contact)
+/// share one least-squares plane, and every corner moves to the nearest point on the planes of its
+/// triangles, those shared by several input faces exactly (common_planes.cpp). Returns the number
+/// of corners moved; exact and 17-digit coordinates are left bit for bit.
+Sz snap_to_common_planes(TriangleMesh& mesh, const ContactTolerance& tolerance);
+
 /// What merge_contacts_into_closed_pieces and remove_contacts removed.
 struct ContactReport {
   struct Touch {
@@ -73,6 +81,14 @@ bool merge_contacts_into_closed_pieces(TriangleMesh& mesh, std::vector<Overlap>&
 std::optional<Failure> remove_contacts(TriangleMesh& mesh, const std::vector<Overlap>& overlaps,
                                        const std::vector<char>& in_closed_piece, double resolution,
                                        double sliver, ContactReport& out);
+
+/// Pairs (i < j, sorted) of triangles whose bounding boxes, widened by `widen`, intersect
+/// (CGAL::box_self_intersection_d).
+std::vector<std::pair<Index, Index>> nearby_triangle_pairs(const TriangleMesh& mesh, double widen);
+/// Every corner of u within `tol` of the plane of t (plane_distance, double precision).
+bool corners_near_plane(const TriangleMesh& mesh, const Tri& t, const Tri& u, double tol);
+/// The longest edge of t.
+double longest_edge(const TriangleMesh& mesh, const Tri& t);
 
 /// Pairs of triangles of different input faces, each strictly on one side of the other's plane
 /// and every corner within the pair's tolerance of it (`tolerance`: the visibility's resolution, or the rounding

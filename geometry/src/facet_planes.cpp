@@ -158,4 +158,31 @@ std::vector<Index> facet_planes(const TriangleMesh& mesh, PlaneGrouping grouping
   return plane;
 }
 
+std::vector<Index> triangle_planes(const TriangleMesh& mesh, PlaneGrouping grouping) {
+  const std::vector<Index> facet_plane = facet_planes(mesh, grouping);
+  const Sz nt = mesh.triangles.size();
+  std::vector<Index> plane(nt);
+  Index next = 0;
+  for (Index p : facet_plane) next = std::max(next, p + 1);
+  std::vector<Index> first(facet_plane.size(), -1);
+  const std::vector<Point> pts = exact_points(mesh);
+  for (Sz t = 0; t < nt; ++t) {
+    const Index f = mesh.facet_of_triangle[t];
+    plane[t] = facet_plane[at(f)];
+    if (first[at(f)] < 0) {
+      first[at(f)] = static_cast<Index>(t);
+      continue;
+    }
+    if (grouping != PlaneGrouping::exact) continue;
+    const Tri& w = mesh.triangles[at(first[at(f)])];
+    const Tri& tr = mesh.triangles[t];
+    for (Index v : tr)
+      if (CGAL::orientation(pts[at(w[0])], pts[at(w[1])], pts[at(w[2])], pts[at(v)]) != CGAL::COPLANAR) {
+        plane[t] = next++;
+        break;
+      }
+  }
+  return plane;
+}
+
 }  // namespace panelrad::geometry

@@ -52,6 +52,17 @@ SceneValidationReport accepted_convex(SceneValidationReport report) {
   return report;
 }
 
+/// The pairs of faces_across_a_gap that `overlaps` does not list already (a pair found within the
+/// rounding, touching, is not a gap as well).
+std::vector<Overlap> gaps_not_in(const TriangleMesh& mesh, const ContactTolerance& tolerance,
+                                 const std::vector<Overlap>& overlaps) {
+  std::vector<Overlap> gaps = faces_across_a_gap(mesh, tolerance);
+  std::set<std::pair<Index, Index>> known;
+  for (const Overlap& o : overlaps) known.emplace(o.i, o.j);
+  std::erase_if(gaps, [&](const Overlap& o) { return known.count({o.i, o.j}) > 0; });
+  return gaps;
+}
+
 /// The faces in contact, one note per pair up to kMaxContactNotes, then one summary.
 constexpr std::size_t kMaxContactNotes = 8;
 
@@ -135,6 +146,15 @@ SceneValidationReport validate_scene(TriangleMesh& mesh) {
       return accepted_convex(std::move(report));
     }
   }
+  // Faces written rounded stand for planes that their corners as written miss by up to the
+  // rounding: the corners move onto them once, for the whole scene, so that the contacts below
+  // are decided on faces that are flat and meet where they were meant to.
+  if (const Sz snapped = snap_to_common_planes(mesh, tolerance); snapped > 0) {
+    join_close_corners(mesh, resolution);
+    report.notes.push_back(std::to_string(snapped) + (snapped == 1 ? " corner was" : " corners were") +
+                           " moved onto the planes of their faces and of the faces those touch, which the "
+                           "coordinates as written miss by their rounding");
+  }
   // Faces facing each other closer than the visibility can resolve are in contact for it: the
   // resolution is four times the shadow tests' margin, so that any gap beyond it is seen. Faces
   // whose coordinates were written rounded are the contact they stand for within that rounding
@@ -146,22 +166,24 @@ SceneValidationReport validate_scene(TriangleMesh& mesh) {
   }
   ScenePieces pieces;
   ContactReport contacts;
-  if (!merge_contacts_into_closed_pieces(mesh, overlaps, pieces, tolerance, contacts))
-    if (auto f = orient_scene_pieces(mesh, pieces)) {
+  {
+    // Solids sharing the corners of their touching faces join into closed pieces across their
+    // contacts, also where those lie a gap within the tolerance apart (a face bent by rounding).
+    std::vector<Overlap> candidates = overlaps;
+    const std::vector<Overlap> gaps = gaps_not_in(mesh, tolerance, overlaps);
+    candidates.insert(candidates.end(), gaps.begin(), gaps.end());
+    if (merge_contacts_into_closed_pieces(mesh, candidates, pieces, tolerance, contacts))
+      overlaps = std::move(candidates);  // found again on the cut mesh
+    else if (auto f = orient_scene_pieces(mesh, pieces)) {
       mesh = input;
       return rejected(std::move(report), *f);
     }
+  }
   // The input faces of open pieces: whether any part of them is left once the contacts are removed.
   std::vector<char> open_facet(at(mesh.num_facets), 0);
   for (Sz t = 0; t < mesh.triangles.size(); ++t)
     if (!pieces.in_closed_piece[t]) open_facet[at(mesh.facet_of_triangle[t])] = 1;
-  std::vector<Overlap> to_close = faces_across_a_gap(mesh, tolerance);
-  {
-    // A pair found within the rounding already (touching) is not a gap as well.
-    std::set<std::pair<Index, Index>> known;
-    for (const Overlap& o : overlaps) known.emplace(o.i, o.j);
-    std::erase_if(to_close, [&](const Overlap& o) { return known.count({o.i, o.j}) > 0; });
-  }
+  std::vector<Overlap> to_close = gaps_not_in(mesh, tolerance, overlaps);
   overlaps.insert(overlaps.end(), to_close.begin(), to_close.end());
   for (const Overlap& o : overlaps)
     if (o.within_rounding) to_close.push_back(o);

@@ -133,9 +133,9 @@ struct Writing {
   std::uint64_t seed = 1;
 
   std::string describe() const {
-    char s[512];
+    char s[1024];
     const Eigen::Quaterniond q(rotation);
-    char r[128] = "";
+    char r[256] = "";
     if (!rotation.isIdentity())
       std::snprintf(r, sizeof r, ", rotated by the quaternion (%.17g, %.17g, %.17g, %.17g)", q.w(), q.x(), q.y(), q.z());
     std::snprintf(s, sizeof s, "%s, %s vertices, %s, %s%s", first_corner < 0 ? "random first corners"

@@ -218,3 +218,42 @@ TEST(FormFactor, TranslationInvariance) {
     EXPECT_NEAR(f1, f0, 1e-10 * (1 + 1 / d) * std::abs(f0)) << P.transpose();
   }
 }
+
+// Slivers of the visible parts (a shadow's edge passing an ulp-level distance from a corner):
+// triangles with an edge 1e-11 to 1e-10 long, P at distance about 1. Their factor is the
+// integrand's value times an area of 1e-12, which the degree-20 rule gets to rounding; the
+// contour formula's O(1) terms must cancel to that. Two failure modes, both once off by 1e-6
+// and 1e-8 of the element: the short edge's direction tilted out of the plane by the corners'
+// rounding (h times it entered the edge's parameters), and the foot of P a few 1e-9 from the
+// sliver's tip (the in-plane angles no longer sum to 0 there, which the cancellation-free form
+// assumed). The absolute bound 1e-15 is 1e-3 of the factor's size.
+TEST(FormFactor, SliversAgainstQuadrature) {
+  struct Case {
+    Vec3 P, nP, nQ, a, b, c;
+  };
+  const Case cases[] = {
+      // The short edge tilted (P's foot 1e-6 from the tip).
+      {{0.063456749999922415, 0.2150070833333067, 0.68375133333326699},
+       {0.45888650730554592, 0.79242954155474099, -0.40184399346544941},
+       {-0.45888650730554603, -0.79242954155474099, 0.40184399346544952},
+       {1.3507432500000998, 0.56254925000007716, 0.35059000000004181},
+       {0.5223423173222782, 1.0074370842224081, 0.28190725600508415},
+       {0.52234231733740721, 1.0074370842090907, 0.281907255996099}},
+      // The foot 2e-9 from the tip.
+      {{0.1422520102945927, 0.18384096642027134, 0.015686215686729853},
+       {0.51945234351163172, 0.84928297039146483, 0.094274593731949574},
+       {-0.51945234300339571, -0.8492829704572824, -0.09427459593940099},
+       {0.60388642497957634, 1.0778766154879138, 0.02537780509450081},
+       {0.66170435559816887, 1.0331239363123172, 0.10996081178129109},
+       {0.66170435537868899, 1.0331239364728961, 0.10996081154402979}},
+  };
+  for (const Case& k : cases) {
+    const double ff = form_factor(k.P, k.nP, k.a, k.b, k.c, k.nQ);
+    const double ref = composite_reference(k.P, k.nP, k.a, k.b, k.c, k.nQ, 2);
+    EXPECT_GT(std::abs(ref), 1e-13);
+    EXPECT_NEAR(ff, ref, 1e-15) << "area " << (k.b - k.a).cross(k.c - k.a).norm() / 2;
+    // Each corner first: the same factor.
+    EXPECT_NEAR(form_factor(k.P, k.nP, k.b, k.c, k.a, k.nQ), ref, 1e-15);
+    EXPECT_NEAR(form_factor(k.P, k.nP, k.c, k.a, k.b, k.nQ), ref, 1e-15);
+  }
+}

@@ -53,37 +53,67 @@ TEST(ContactWritingsSweep, EveryFamilyEveryWritingSolvesToTheConstant) {
   std::printf("%d scenes; largest error relative to its bound %.3g (scene %d)\n", scenes, worst, worst_index);
 }
 
-// Each family under 20 random rotations about the room's centre, written with 17 significant
-// digits: the corners then carry the writer's rounding (an ulp or two), so faces in contact cross,
-// part or lie back to back by that much, and corners meant to lie on another solid's edge lie an
-// ulp off it. Accepted, and u = c to the oracle's bound (the rounded scene is closed once its
-// contacts are closed within the rounding, so the identity holds for it exactly).
-TEST(ContactWritingsSweep, EveryFamilyRotatedSolvesToTheConstant) {
+/// Each family of contact_scenes.hpp under 20 random rotations about the room's centre (seed 7,
+/// the same rotations for every `digits`), random first corners, shared and separate vertex lines
+/// in turn, written with `digits`: validated and solved by the closed-scene oracle at level 0,
+/// each accepted and solved, then `check`(run).
+template <class Check>
+void for_each_rotated_writing(int digits, Check&& check) {
   const std::vector<testing::PolygonScene> families = testing::contact_families();
   std::mt19937_64 rng(7);
-  int scenes = 0;
-  double worst = 0;
   for (std::size_t f = 0; f < families.size(); ++f)
     for (int r = 0; r < 20; ++r) {
-      const Eigen::Matrix3d rotation = testing::random_rotation(rng);
-      {
-        const int digits = 17;
-        testing::Writing w;
-        w.first_corner = -1;
-        w.separate = (r % 2) == 1;
-        w.digits = digits;
-        w.rotation = rotation;
-        w.seed = rng();
-        const testing::OracleRun run = testing::run_constant_oracle(testing::read_scene(families[f], w), 1.0, 0);
-        ++scenes;
-        SCOPED_TRACE(families[f].name + ", " + w.describe());
-        ASSERT_TRUE(run.valid) << run.describe();
-        ASSERT_TRUE(run.solved) << run.describe();
-        EXPECT_LE(run.error, run.tolerance) << run.describe();
-        worst = std::max(worst, run.error / run.tolerance);
-      }
+      testing::Writing w;
+      w.rotation = testing::random_rotation(rng);
+      w.first_corner = -1;
+      w.separate = (r % 2) == 1;
+      w.digits = digits;
+      w.seed = rng();
+      const testing::OracleRun run = testing::run_constant_oracle(testing::read_scene(families[f], w), 1.0, 0);
+      SCOPED_TRACE(families[f].name + ", " + w.describe());
+      ASSERT_TRUE(run.valid) << run.describe();
+      ASSERT_TRUE(run.solved) << run.describe();
+      check(run);
     }
+}
+
+// Written with 17 significant digits: the corners then carry the writer's rounding (an ulp or
+// two), so faces in contact cross, part or lie back to back by that much, and corners meant to lie
+// on another solid's edge lie an ulp off it. Accepted, and u = c to the oracle's bound (the
+// rounded scene is closed once its contacts are closed within the rounding, so the identity holds
+// for it exactly).
+TEST(ContactWritingsSweep, EveryFamilyRotatedSolvesToTheConstant) {
+  int scenes = 0;
+  double worst = 0;
+  for_each_rotated_writing(17, [&](const testing::OracleRun& run) {
+    ++scenes;
+    EXPECT_LE(run.error, run.tolerance) << run.describe();
+    worst = std::max(worst, run.error / run.tolerance);
+  });
   std::printf("%d rotated scenes; largest error relative to its bound %.3g\n", scenes, worst);
+}
+
+// The same rotations written with 6 decimals (as Blender writes OBJ) and with 9 significant
+// digits: the writer's rounding (5e-7 and 5e-10 of the room) bends each quad and leaves each
+// contact apart or crossing by that much. The faces are moved back onto their common planes
+// (common_planes.cpp), so that the scene is closed again: accepted, and u = c to 1e-8. The
+// bound is not the 1e-9 of the exact writings: where a corner lies on another face's edge (a
+// box's corner on the floor's diagonal) and on three planes of its own, the four disagree by the
+// rounding, the corner keeps to the edge, and its own faces bend by up to about 1e-7 (2e-8 at
+// 6 decimals), which the identity sees at the 1e-9 level; the sweep prints how many exceed 1e-9.
+TEST(ContactWritingsSweep, EveryFamilyRotatedAndRoundedSolvesToTheConstant) {
+  for (int digits : {6, 9}) {
+    int scenes = 0, above = 0;
+    double worst = 0;
+    for_each_rotated_writing(digits, [&](const testing::OracleRun& run) {
+      ++scenes;
+      EXPECT_LE(run.error, 1e-8) << run.describe();
+      if (run.error > 1e-9) ++above;
+      worst = std::max(worst, run.error);
+    });
+    std::printf("%d rotated scenes written with %s: %d above 1e-9, largest max |u - c| / c %.3g\n", scenes,
+                digits == 6 ? "6 decimals" : "9 digits", above, worst);
+  }
 }
 
 }  // namespace

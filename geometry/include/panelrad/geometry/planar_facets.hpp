@@ -41,4 +41,10 @@ enum class PlaneGrouping {
 /// that no triangle has gets -1.
 std::vector<Index> facet_planes(const TriangleMesh& mesh, PlaneGrouping grouping = PlaneGrouping::within_rounding);
 
+/// The supporting plane of each triangle: its facet's (facet_planes), except that with
+/// PlaneGrouping::exact a triangle whose corners are not all exactly coplanar with its facet's
+/// first triangle (a face written rounded, bent by its digits) gets a plane id of its own, after
+/// those of the facets: G(P, Q) between the two halves of a bent face is not zero.
+std::vector<Index> triangle_planes(const TriangleMesh& mesh, PlaneGrouping grouping = PlaneGrouping::within_rounding);
+
 }  // namespace panelrad::geometry

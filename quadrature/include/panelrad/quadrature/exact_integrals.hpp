@@ -56,7 +56,9 @@ inline double form_factor(const Vec3& P, const Vec3& nP, const Vec3& a, const Ve
 //   sum_k sgn(e_k) [ (|e_k|/D_k - 1) gamma_k + (gamma_k(D_k) - gamma_k(|e_k|)) ]
 // (the in-plane winding sum sgn(e_k) gamma_k(|e_k|) is exactly 0 outside), each bracket
 // evaluated from differences formed analytically (D - |e| = h^2/(D + |e|)).
-// Rounding. h and e_k computed as dot products with P - a and V_k - P carry absolute errors of a
+// Rounding. Each edge vector is projected onto the plane (nQ unit) before its direction is
+// taken, so that an edge much shorter than h, whose corners are in the plane only to rounding,
+// does not tilt out of it. h and e_k computed as dot products with P - a and V_k - P carry absolute errors of a
 // few eps R (R the distance from P to the corners); the terms [h (nP.n_k) + nu e_k] gamma_k / D_k
 // then carry a few eps R / D_k. Where P lies close to an edge's line relative to R (a point a
 // narrow gap h away from a plane, its foot near an edge of an element there), that is a relative
@@ -69,6 +71,9 @@ inline double form_factor(const Vec3& P, const Vec3& nP, const Vec3& a, const Ve
 /// P within R / kNearEdgeRatio of an edge's line (R its distance from the edge's corners): h and
 /// the e_k are recomputed by accurate_heights.
 inline constexpr double kNearEdgeRatio = 64;
+/// The largest in-plane winding sum of a triangle seen from a foot outside it (exactly 0) that is
+/// taken as rounding: beyond it the cancellation-free form of form_factor is not used.
+inline constexpr double kWindingRounding = 1e-12;
 
 namespace detail {
 
@@ -104,8 +109,13 @@ inline double form_factor(const Vec3& P, const Vec3& nP, const Vec3& a, const Ve
   double e[3], D[3], L[3], nPnk[3], s1[3], s2[3];
   bool near_edge = false;
   for (int k = 0; k < 3; ++k) {
-    const Vec3 E = *V[k + 1] - *V[k];
+    // The edge taken in the plane: its corners lie in it only to rounding, a tilt of about
+    // eps |V| / L out of it, which s1 and s2 would take in as h times the tilt (for a sliver's
+    // edge of length 1e-11 a millionth of h, against an in-plane angle of that order).
+    Vec3 E = *V[k + 1] - *V[k];
+    E -= E.dot(nQ) * nQ;
     L[k] = E.norm();
+    if (!(L[k] > 0)) return 0;  // no length in the plane: the triangle has no area there
     const Vec3 tau = E / L[k];
     const Vec3 nk = tau.cross(nQ);  // outward in-plane normal of edge k
     const Vec3 w0 = *V[k] - P, w1 = *V[k + 1] - P;
@@ -134,7 +144,11 @@ inline double form_factor(const Vec3& P, const Vec3& nP, const Vec3& a, const Ve
     outside |= e[k] < 0;
   }
   if (outside && nu != 0 && std::abs(sum_n) * 64.0 < mag_n) {
-    sum_n = 0;  // cancellation-free form; the winding term is 0 since the foot is outside
+    // Cancellation-free form; the winding term is 0 since the foot is outside, which holds for
+    // the in-plane angles as computed only while the foot is not within rounding of a corner
+    // (the tip of a sliver a few 1e-9 from the foot: angles off by 1e-7). There the direct sum
+    // is kept: its terms are then as small as the sliver, and so is their rounding.
+    double cancellation_free = 0, winding = 0;
     for (int k = 0; k < 3; ++k) {
       if (e[k] == 0) continue;
       const double ae = std::abs(e[k]);
@@ -142,8 +156,11 @@ inline double form_factor(const Vec3& P, const Vec3& nP, const Vec3& a, const Ve
       const double delta = std::atan2(-s2[k] * q, D[k] * ae + s2[k] * s2[k]) -
                            std::atan2(-s1[k] * q, D[k] * ae + s1[k] * s1[k]);
       const double bracket = -q * g[k] + delta;  // (|e|/D - 1) gamma + gamma(D) - gamma(|e|)
-      sum_n += e[k] > 0 ? bracket : -bracket;
+      cancellation_free += e[k] > 0 ? bracket : -bracket;
+      const double in_plane = std::atan2(ae * L[k], ae * ae + s1[k] * s2[k]);
+      winding += e[k] > 0 ? in_plane : -in_plane;
     }
+    if (std::abs(winding) <= kWindingRounding) sum_n = cancellation_free;
   }
   constexpr double inv_two_pi = 0.15915494309189533577;  // 1/(2 pi)
   return -(h * sum_t + nu * sum_n) * inv_two_pi;
