@@ -27,6 +27,7 @@
 // visibility's resolution take part: coordinates meant exactly (short decimals, a mesh built in
 // code) and 17-digit ones keep their values bit for bit.
 #include "contact_removal.hpp"
+#include "t_junctions.hpp"
 
 #include <CGAL/Bbox_3.h>
 #include <CGAL/box_intersection_d.h>
@@ -147,13 +148,7 @@ void corners_on_edges(const TriangleMesh& mesh, const std::vector<Index>& tris, 
   for (const auto& [v, e] : hits) {
     const auto [ia, ib] = edges[at(e)];
     if (v == ia || v == ib) continue;
-    const Vec3 &a = mesh.vertices[at(ia)], &b = mesh.vertices[at(ib)], &x = mesh.vertices[at(v)];
-    const Vec3 d = b - a;
-    const double length = d.norm();
-    if (!(length > 2 * tol)) continue;
-    const double s = (x - a).dot(d) / length;  // along the edge from a
-    if (!(s > tol && s < length - tol)) continue;
-    if (!((x - a - (s / length) * d).norm() <= tol)) continue;
+    if (!near_open_segment(mesh.vertices[at(ia)], mesh.vertices[at(ib)], mesh.vertices[at(v)], tol)) continue;
     const Vec3 m = (moved[at(ib)] - moved[at(ia)]).cross(plane.normal).normalized();
     if (!m.allFinite()) continue;
     lines_at[at(v)].push_back({m, m.dot(moved[at(ia)]), 0, tol});
@@ -179,13 +174,13 @@ Sz snap_to_common_planes(TriangleMesh& mesh, const ContactTolerance& tolerance) 
   };
   for (const auto& [i, j] : candidates) {
     const Tri &ti = mesh.triangles[at(i)], &tj = mesh.triangles[at(j)];
-    const double size = std::max(longest_edge(mesh, ti), longest_edge(mesh, tj));
-    const double tol = rounding_tolerance(tolerance, mesh.facet_of_triangle[at(i)], mesh.facet_of_triangle[at(j)], size);
+    const double li = longest_edge(mesh, ti), lj = longest_edge(mesh, tj);
+    const double tol =
+        rounding_tolerance(tolerance, mesh.facet_of_triangle[at(i)], mesh.facet_of_triangle[at(j)], std::max(li, lj));
     if (!(tol > tolerance.resolution)) continue;
     // The smaller triangle within the tolerance of the larger one's plane: the plane of a small
     // triangle is tilted by up to about tol / its size, which its far neighbour's corners magnify.
-    const bool i_larger = longest_edge(mesh, ti) >= longest_edge(mesh, tj);
-    if (!(i_larger ? corners_near_plane(mesh, ti, tj, tol) : corners_near_plane(mesh, tj, ti, tol))) continue;
+    if (!(li >= lj ? corners_near_plane(mesh, ti, tj, tol) : corners_near_plane(mesh, tj, ti, tol))) continue;
     if (!projections_overlap(mesh, ti, tj, -tol)) continue;  // apart in their plane
     const Index ri = root(i), rj = root(j);
     const double joined = std::max({class_tol[at(ri)], class_tol[at(rj)], tol});

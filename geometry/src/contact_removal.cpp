@@ -462,6 +462,8 @@ bool merge_contacts_into_closed_pieces(TriangleMesh& mesh, std::vector<Overlap>&
     for (int s = 0; s < 3; ++s)
       edge_triangles[std::minmax(mesh.triangles[t][at(s)], mesh.triangles[t][at((s + 1) % 3)])].push_back(
           static_cast<Index>(t));
+  // Pieces of a cut no higher than the largest contact tolerance are a slit within the rounding.
+  const double sliver = largest_tolerance(tolerance, diameter(mesh));
   std::set<Index> refused;  // contacts (roots) left as they are
   for (;;) {
     std::vector<std::vector<Index>> covers(nt);
@@ -470,7 +472,7 @@ bool merge_contacts_into_closed_pieces(TriangleMesh& mesh, std::vector<Overlap>&
         covers[at(o.i)].push_back(o.j);
         covers[at(o.j)].push_back(o.i);
       }
-    CutMesh cut = cut_covered(mesh, covers, largest_tolerance(tolerance, diameter(mesh)));
+    CutMesh cut = cut_covered(mesh, covers, sliver);
     join_close_corners(cut.mesh, tolerance.resolution, &cut.origin);
     if (cut.mesh.triangles.empty()) return false;
     // The cut leaves a side of a solid whose edge the other solid's sides now meet in two pieces

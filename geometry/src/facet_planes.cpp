@@ -164,6 +164,10 @@ std::vector<Index> triangle_planes(const TriangleMesh& mesh, PlaneGrouping group
   std::vector<Index> plane(nt);
   Index next = 0;
   for (Index p : facet_plane) next = std::max(next, p + 1);
+  if (grouping != PlaneGrouping::exact) {  // within the rounding: the facet's plane throughout
+    for (Sz t = 0; t < nt; ++t) plane[t] = facet_plane[at(mesh.facet_of_triangle[t])];
+    return plane;
+  }
   std::vector<Index> first(facet_plane.size(), -1);
   const std::vector<Point> pts = exact_points(mesh);
   for (Sz t = 0; t < nt; ++t) {
@@ -173,7 +177,6 @@ std::vector<Index> triangle_planes(const TriangleMesh& mesh, PlaneGrouping group
       first[at(f)] = static_cast<Index>(t);
       continue;
     }
-    if (grouping != PlaneGrouping::exact) continue;
     const Tri& w = mesh.triangles[at(first[at(f)])];
     const Tri& tr = mesh.triangles[t];
     for (Index v : tr)

@@ -155,13 +155,9 @@ Sz split_round(TriangleMesh& mesh, const std::vector<Point>& p, std::vector<Inde
     if (v == ia || v == ib) continue;
     const Point &a = p[at(ia)], &b = p[at(ib)], &x = p[at(v)];
     const Vec3 d = mesh.vertices[at(ib)] - mesh.vertices[at(ia)];
-    if (!CGAL::collinear(a, x, b) || !CGAL::collinear_are_strictly_ordered_along_line(a, x, b)) {
-      // Within `tolerance` of the open segment, further than it from both ends.
-      if (!(tolerance > 0)) continue;
-      const Vec3 ax = mesh.vertices[at(v)] - mesh.vertices[at(ia)];
-      const double length = d.norm(), along = ax.dot(d) / length;
-      if (!(along > tolerance && along < length - tolerance) || !((ax - along / length * d).norm() <= tolerance)) continue;
-    }
+    if ((!CGAL::collinear(a, x, b) || !CGAL::collinear_are_strictly_ordered_along_line(a, x, b)) &&
+        !(tolerance > 0 && near_open_segment(mesh.vertices[at(ia)], mesh.vertices[at(ib)], mesh.vertices[at(v)], tolerance)))
+      continue;
     int axis = 0;
     d.cwiseAbs().maxCoeff(&axis);
     const double coord = mesh.vertices[at(v)][axis];
@@ -228,6 +224,12 @@ Sz split_round(TriangleMesh& mesh, const std::vector<Point>& p, std::vector<Inde
 }
 
 }  // namespace
+
+bool near_open_segment(const Vec3& a, const Vec3& b, const Vec3& x, double tolerance) {
+  const Vec3 d = b - a, ax = x - a;
+  const double length = d.norm(), along = ax.dot(d) / length;
+  return along > tolerance && along < length - tolerance && (ax - along / length * d).norm() <= tolerance;
+}
 
 std::size_t split_t_junctions(TriangleMesh& mesh, std::vector<Index>* origin, double tolerance) {
   const std::vector<Point> p = exact_points(mesh);

@@ -30,6 +30,10 @@ namespace panelrad::geometry::validation_detail {
 /// into. `tolerance` > 0: a vertex within that distance of the open segment, and further than it
 /// from both ends, lies inside it too (corners written rounded: a corner of one solid on the edge
 /// of another, an ulp off its line).
+/// x lies within `tolerance` of the open segment (a, b) and further than it from both ends (along
+/// the segment): a corner on that edge within the rounding of the coordinates.
+bool near_open_segment(const Vec3& a, const Vec3& b, const Vec3& x, double tolerance);
+
 std::size_t split_t_junctions(TriangleMesh& mesh, std::vector<Index>* origin = nullptr, double tolerance = 0);
 
 }  // namespace panelrad::geometry::validation_detail

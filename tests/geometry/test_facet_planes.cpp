@@ -175,3 +175,28 @@ TEST(FacetPlanes, ClusterTreePlanes) {
 }
 
 }  // namespace
+
+// triangle_planes: a quad facet bent by 1e-7 (its fourth corner off the plane of the first three)
+// keeps one plane within the rounding, but its second triangle gets a plane of its own when only
+// exact coplanarity counts (a general scene: G between the halves is not zero); a flat quad keeps
+// one plane either way, and an unbent second facet in that plane shares it.
+TEST(TrianglePlanes, ABentFaceSplitsOnlyWhenExact) {
+  pg::TriangleMesh m;
+  m.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 1e-7}, {0, 1, 0},   // bent quad
+                {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1},      // flat quad
+                {2, 0, 1}, {3, 0, 1}, {3, 1, 1}};                // a triangle in the flat quad's plane
+  m.triangles = {{0, 1, 3}, {1, 2, 3}, {4, 5, 7}, {5, 6, 7}, {8, 9, 10}};
+  m.facet_of_triangle = {0, 0, 1, 1, 2};
+  m.num_facets = 3;
+  const std::vector<Index> exact = pg::triangle_planes(m, pg::PlaneGrouping::exact);
+  ASSERT_EQ(exact.size(), 5u);
+  EXPECT_NE(exact[0], exact[1]);
+  EXPECT_EQ(exact[2], exact[3]);
+  EXPECT_EQ(exact[2], exact[4]);
+  EXPECT_EQ(std::set<Index>(exact.begin(), exact.end()).size(), 3u);
+  const std::vector<Index> facets = pg::facet_planes(m, pg::PlaneGrouping::exact);
+  EXPECT_EQ(exact[0], facets[0]);  // a facet's first triangle keeps the facet's plane
+  const std::vector<Index> rounded = pg::triangle_planes(m, pg::PlaneGrouping::within_rounding);
+  const std::vector<Index> rounded_facets = pg::facet_planes(m, pg::PlaneGrouping::within_rounding);
+  for (std::size_t t = 0; t < 5; ++t) EXPECT_EQ(rounded[t], rounded_facets[static_cast<std::size_t>(m.facet_of_triangle[t])]);
+}
