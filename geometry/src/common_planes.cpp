@@ -57,6 +57,48 @@ struct Plane {
   double tol;     ///< the tolerance of the triangles standing for it
 };
 
+/// A class of triangles standing for one plane: its triangles, their corners, its plane.
+struct FlatClass {
+  const std::vector<Index>* tris;
+  std::vector<Index> corners;
+  Plane plane;
+};
+
+/// Rounds of fitting and placing at most, and the weight of a corner held on an edge's line in the
+/// refitted planes (its disagreement with the plane shrinks by about this factor a round).
+constexpr int kRounds = 4;
+constexpr double kOnLine = 1e6;
+
+/// The weighted least-squares plane through `corners` (positions `x`, weights `w`, all 1 when
+/// empty): normal the eigenvector of the weighted scatter with the smallest eigenvalue.
+Plane fitted_plane(const std::vector<Index>& corners, const std::vector<Vec3>& x, const std::vector<double>& w,
+                   int tier, double tol) {
+  const auto weight = [&](Index v) { return w.empty() ? 1.0 : w[at(v)]; };
+  Vec3 centre = Vec3::Zero();
+  double total = 0;
+  for (Index v : corners) {
+    centre += weight(v) * x[at(v)];
+    total += weight(v);
+  }
+  centre /= total;
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  for (Index v : corners) {
+    const Vec3 d = x[at(v)] - centre;
+    scatter += weight(v) * d * d.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(scatter);
+  const Vec3 n = eig.eigenvectors().col(0).normalized();  // smallest eigenvalue first
+  return {n, n.dot(centre), tier, tol};
+}
+
+/// The largest distance of a class's corner (as moved) from its class's plane.
+double largest_residual(const std::vector<FlatClass>& classes, const std::vector<Vec3>& x) {
+  double r = 0;
+  for (const FlatClass& c : classes)
+    for (Index v : c.corners) r = std::max(r, std::abs(c.plane.normal.dot(x[at(v)]) - c.plane.offset));
+  return r;
+}
+
 /// The move from x towards satisfying `rows` (unit normals, offsets) in the least-squares sense,
 /// restricted to the span of `basis` (columns), directions where the rows are nearly dependent
 /// left out; `null` receives the basis of the directions the rows leave free.
@@ -187,54 +229,55 @@ Sz snap_to_common_planes(TriangleMesh& mesh, const ContactTolerance& tolerance) 
     if (ri != rj) parent[at(std::max(ri, rj))] = std::min(ri, rj);
     class_tol[at(std::min(ri, rj))] = joined;
   }
-  // 2. The least-squares plane of each class of two or more triangles.
+  // 2. The least-squares plane of each class of two or more triangles, kept when flat.
   std::map<Index, std::vector<Index>> members;
   for (Sz t = 0; t < nt; ++t) members[root(static_cast<Index>(t))].push_back(static_cast<Index>(t));
-  std::vector<std::vector<Plane>> planes_at(mesh.vertices.size());
-  std::vector<std::pair<Plane, const std::vector<Index>*>> flat_classes;
+  std::vector<FlatClass> classes;
   for (const auto& [r, tris] : members) {
     if (tris.size() < 2) continue;
-    std::vector<Index> corners;
+    FlatClass c{&tris, {}, {}};
     bool shared = false;
     for (Index t : tris) {
-      for (Index v : mesh.triangles[at(t)]) corners.push_back(v);
+      for (Index v : mesh.triangles[at(t)]) c.corners.push_back(v);
       shared = shared || mesh.facet_of_triangle[at(t)] != mesh.facet_of_triangle[at(tris.front())];
     }
-    std::sort(corners.begin(), corners.end());
-    corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
-    Vec3 centre = Vec3::Zero();
-    for (Index v : corners) centre += mesh.vertices[at(v)];
-    centre /= static_cast<double>(corners.size());
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (Index v : corners) {
-      const Vec3 d = mesh.vertices[at(v)] - centre;
-      cov += d * d.transpose();
-    }
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-    const Vec3 n = eig.eigenvectors().col(0).normalized();  // smallest eigenvalue first
-    const double offset = n.dot(centre);
-    const double tol = class_tol[at(r)];
-    const bool flat = std::all_of(corners.begin(), corners.end(),
-                                  [&](Index v) { return std::abs(n.dot(mesh.vertices[at(v)]) - offset) <= tol; });
-    if (!flat || !std::isfinite(offset)) continue;  // a curved chain of nearly flat pairs: left as written
-    const Plane plane{n, offset, shared ? 1 : 2, tol};
-    for (Index v : corners) planes_at[at(v)].push_back(plane);
-    flat_classes.emplace_back(plane, &tris);
+    std::sort(c.corners.begin(), c.corners.end());
+    c.corners.erase(std::unique(c.corners.begin(), c.corners.end()), c.corners.end());
+    c.plane = fitted_plane(c.corners, mesh.vertices, {}, shared ? 1 : 2, class_tol[at(r)]);
+    const bool flat = std::all_of(c.corners.begin(), c.corners.end(), [&](Index v) {
+      return std::abs(c.plane.normal.dot(mesh.vertices[at(v)]) - c.plane.offset) <= c.plane.tol;
+    });
+    if (flat && std::isfinite(c.plane.offset)) classes.push_back(std::move(c));  // else a curved chain
   }
-  // 3. Each corner onto its planes.
+  // 3. Each corner onto its planes; 4. a corner within the tolerance of an edge of its plane (inside
+  // the segment, not at its ends) onto that edge's line first, as its ends were moved: a box's
+  // corner written on the floor's diagonal. Such a corner has more constraints than freedom (the
+  // line's two and its own three planes), which the rounding makes disagree; the planes are fitted
+  // again through the corners as moved, those on lines weighing kOnLine, so that they pass through
+  // them, and every corner is placed again, until every corner lies on its planes to within the
+  // resolution (a few rounds: each shrinks the disagreement by about the weights' ratio).
   std::vector<Vec3> moved = mesh.vertices;
-  for (Sz v = 0; v < mesh.vertices.size(); ++v)
-    if (!planes_at[v].empty()) moved[v] = placed(mesh.vertices[v], planes_at[v], tolerance.resolution);
-  // 4. A corner within the tolerance of an edge of its plane (inside the segment, not at its ends)
-  // lies on it: a box's corner written on the floor's diagonal. It moves again, onto the line of
-  // that edge as its ends were moved first, and then onto its planes in the freedom left.
-  std::vector<std::vector<Plane>> lines_at(mesh.vertices.size());
-  for (const auto& [plane, tris] : flat_classes) corners_on_edges(mesh, *tris, plane, moved, lines_at);
-  for (Sz v = 0; v < mesh.vertices.size(); ++v) {
-    if (lines_at[v].empty()) continue;
-    std::vector<Plane> all = planes_at[v];
-    all.insert(all.end(), lines_at[v].begin(), lines_at[v].end());
-    moved[v] = placed(mesh.vertices[v], all, tolerance.resolution);
+  std::vector<double> weight(mesh.vertices.size(), 1.0);
+  for (int round = 0; round < kRounds; ++round) {
+    std::vector<std::vector<Plane>> planes_at(mesh.vertices.size());
+    for (FlatClass& c : classes) {
+      if (round > 0) c.plane = fitted_plane(c.corners, moved, weight, c.plane.tier, c.plane.tol);
+      for (Index v : c.corners) planes_at[at(v)].push_back(c.plane);
+    }
+    for (Sz v = 0; v < mesh.vertices.size(); ++v)
+      if (!planes_at[v].empty()) moved[v] = placed(mesh.vertices[v], planes_at[v], tolerance.resolution);
+    std::vector<std::vector<Plane>> lines_at(mesh.vertices.size());
+    for (const FlatClass& c : classes) corners_on_edges(mesh, *c.tris, c.plane, moved, lines_at);
+    bool any_line = false;
+    for (Sz v = 0; v < mesh.vertices.size(); ++v) {
+      if (lines_at[v].empty()) continue;
+      any_line = true;
+      weight[v] = kOnLine;
+      std::vector<Plane> all = planes_at[v];
+      all.insert(all.end(), lines_at[v].begin(), lines_at[v].end());
+      moved[v] = placed(mesh.vertices[v], all, tolerance.resolution);
+    }
+    if (!any_line || largest_residual(classes, moved) <= tolerance.resolution) break;
   }
   Sz count = 0;
   for (Sz v = 0; v < mesh.vertices.size(); ++v) count += moved[v] != mesh.vertices[v] ? 1 : 0;

@@ -125,4 +125,9 @@ void subtract_convex_from_piece(const Vec2* piece, int np, double piece_area, co
 
 double polygon_area(const Vec2* p, int n);
 
+/// The counter-clockwise polygon p[0, n) with every corner that is not a strict left turn dropped,
+/// repeatedly, in place: the convex hull of a polygon that is convex up to rounding. Returns the
+/// number of corners left.
+int convex_in_place(Vec2* p, int n);
+
 }  // namespace panelrad::geometry::occluder_detail

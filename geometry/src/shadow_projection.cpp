@@ -129,6 +129,24 @@ double polygon_area(const Vec2* p, int n) {
   return a / 2;
 }
 
+int convex_in_place(Vec2* p, int n) {
+  bool dropped = true;
+  while (dropped && n >= 3) {
+    dropped = false;
+    for (int i = 0; i < n && n >= 3; ++i) {
+      const Vec2& a = p[i > 0 ? i - 1 : n - 1];
+      const Vec2& b = p[i];
+      const Vec2& c = p[i + 1 < n ? i + 1 : 0];
+      const Vec2 ab = b - a, bc = c - b;
+      if (ab.x() * bc.y() - ab.y() * bc.x() > 0) continue;  // a left turn: a convex corner
+      std::copy(p + i + 1, p + n, p + i);
+      --n;
+      dropped = true;
+    }
+  }
+  return n;
+}
+
 bool cast_shadow(const FaceData& f, const Shaft& s, Shadow& out) {
   std::array<Vec3, 9> buf_a, buf_b;
   Vec3* cur = buf_a.data();
@@ -170,6 +188,13 @@ bool cast_shadow(const FaceData& f, const Shaft& s, Shadow& out) {
     std::reverse(out.p.begin(), out.p.begin() + k);
     a = -a;
   }
+  // The shadow of a convex polygon is convex, but a corner nearly in line with its neighbours (an
+  // edge of the face seen almost end-on from P projects to a segment of a rounding's length) may
+  // come out as a reflex turn. The subtraction uses the shadow as the intersection of its edges'
+  // inner half-planes, which then loses a sliver of the shadow between the short edge's line and
+  // the next: such corners are dropped, leaving the convex hull of the projected corners.
+  k = convex_in_place(out.p.data(), k);
+  if (k < 3) return false;
   out.n = k;
   out.area = a;
   return a > s.area_margin;

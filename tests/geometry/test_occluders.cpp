@@ -879,3 +879,35 @@ TEST(Occluders, RefusesTrianglesWithoutAPlane) {
 }
 
 }  // namespace
+
+// Two faces of a box meeting along an edge that points almost exactly at P (seen end-on) cast
+// shadows whose far corner projects a rounding's length (2.5e-11) from the near one, nearly in line
+// with the next corner: the projected polygon may turn the wrong way there by rounding. Its
+// convex hull is the shadow; otherwise the half-planes of its edges leave out a sliver wedge of
+// tau (here 4e-7 wide at its base) that the faces hide. Coordinates from a rotated room with a box
+// in a corner, written with 6 decimals: every visible piece must be seen from P through its
+// interior (the ray test, an independent algorithm), and no piece is a sliver between the two
+// shadows.
+TEST(Occluders, AnEdgeSeenEndOnHidesAllItsFacesCover) {
+  const Vec3 A(-0.13682996053524843, 1.0213188944129947, 0.76958090490811659),
+      B(0.13426578456298155, 0.81337184965790854, 0.88475492853750914),
+      C(0.055998272459508128, 1.0724378010244449, 0.75529859106401054),
+      D(0.15857920995599728, 0.59603219933947604, 0.43511917282930362),
+      E(0.42350793731654079, 0.89005024539153266, 0.86333142982046884);
+  const Tri tau{A, B, C};
+  const Occluders occ(mesh_of({tau, Tri{C, B, D}, Tri{E, D, B}}));
+  const Vec3 P(0.78303100183371666, 0.18326865027495298, 0.85373738275524014);
+  const Vec3 nP(-0.26089040718959883, 0.86355388993949378, -0.43152158069650925);
+  const Vec3 nQ = -(B - A).cross(C - A).normalized();
+  std::vector<Index> among;
+  occ.candidates(P, nP, tau, nQ, among);
+  VisiblePart part;
+  occ.visible_part(P, nP, tau, nQ, among, part);
+  ASSERT_EQ(part.piece_end.size(), 1u) << "one wedge between the shadow's edge and tau's edge AB is seen";
+  Vec3 centre = Vec3::Zero();
+  for (const Vec3& p : part.points) centre += p;
+  centre /= static_cast<double>(part.points.size());
+  EXPECT_TRUE(occ.visible(P, centre));
+  EXPECT_GT(part.area, 0);
+  EXPECT_LT(part.area, 1e-5 * area(tau)) << "a wedge about 3e-7 wide at A";
+}
