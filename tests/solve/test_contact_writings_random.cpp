@@ -113,5 +113,48 @@ TEST(ContactWritingsSweep, EveryFamilyRotatedAndRoundedSolvesToTheConstant) {
   }
 }
 
+// Rotation together with the other frames: 5 rotations of each family (seed 11) scaled by 1e-3
+// and 1e3 and moved to 1e6. Where the written digits resolve the scene (the rounding below the
+// contact tolerance's cap of 1e-4 of a pair's size) every scene is accepted and u = c to the
+// oracle's bound. Left out: 6 decimals at 1e-3 (3 significant digits: the quads are refused as
+// not planar); 9 digits at 1e6 (2 decimals, a rounding of 5e-3 of the room: crossings are refused
+// and joints beyond the cap are gaps, a different scene); and 17 digits at 1e6, where the
+// visibility's margin (64 eps max |x|, 1.4e-8 of the room there) rather than the coordinates'
+// spacing sets the error, up to about twice the oracle's bound (docs/scenes-and-visibility.md).
+TEST(ContactWritingsSweep, EveryFamilyRotatedInEveryFrameSolvesToTheConstant) {
+  const std::vector<testing::PolygonScene> families = testing::contact_families();
+  struct Case {
+    testing::Frame frame;
+    int digits;
+  };
+  const std::vector<Case> cases = {{{"small", 1e-3, Vec3::Zero()}, 9},        {{"small", 1e-3, Vec3::Zero()}, 17},
+                                   {{"large", 1e3, Vec3::Zero()}, 6},         {{"large", 1e3, Vec3::Zero()}, 9},
+                                   {{"large", 1e3, Vec3::Zero()}, 17},        {{"moved", 1.0, Vec3(1e6, -1e6, 1e6)}, 6}};
+  for (const Case& c : cases) {
+    std::mt19937_64 rng(11);
+    double worst = 0;
+    int scenes = 0;
+    for (std::size_t f = 0; f < families.size(); ++f)
+      for (int r = 0; r < 5; ++r) {
+        testing::Writing w;
+        w.rotation = testing::random_rotation(rng);
+        w.first_corner = -1;
+        w.separate = (r % 2) == 1;
+        w.digits = c.digits;
+        w.seed = rng();
+        w.frame = c.frame;
+        const testing::OracleRun run = testing::run_constant_oracle(testing::read_scene(families[f], w), 1.0, 0);
+        SCOPED_TRACE(families[f].name + ", " + w.describe());
+        ASSERT_TRUE(run.valid) << run.describe();
+        ASSERT_TRUE(run.solved) << run.describe();
+        EXPECT_LE(run.error, run.tolerance) << run.describe();
+        worst = std::max(worst, run.error / run.tolerance);
+        ++scenes;
+      }
+    std::printf("%d rotated scenes, %s, %d digits: largest error relative to the oracle's bound %.3g\n", scenes,
+                c.frame.describe().c_str(), c.digits, worst);
+  }
+}
+
 }  // namespace
 }  // namespace panelrad
