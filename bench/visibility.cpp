@@ -43,6 +43,7 @@ struct Row {
   Index n = 0;
   double setup_s = 0, product_s = 0, block3_s = 0, bytes_per_element = 0;
   VisibilityWork work;
+  std::string detail;  // the fast operator's pair counts
 };
 
 int g_products = 9;  // products timed per operator (the median is reported)
@@ -55,7 +56,7 @@ Row measure(const std::string& name, const Scene& scene, int level, const Operat
   const Collocation unit = col.with_row_weights(Eigen::VectorXd::Ones(col.size()));
   Stopwatch clock;
   const std::unique_ptr<RadiosityOperator> H = make_operator(unit, op, visibility);
-  Row r{name, visibility, col.size(), clock.seconds(), 0, 0, 0, visibility_work(*H)};
+  Row r{name, visibility, col.size(), clock.seconds(), 0, 0, 0, visibility_work(*H), {}};
   const Eigen::VectorXd v = Eigen::VectorXd::Ones(col.size());
   Eigen::MatrixXd V(col.size(), 3), Y;
   V.col(0) = v;
@@ -78,6 +79,16 @@ Row measure(const std::string& name, const Scene& scene, int level, const Operat
   r.product_s = median(single);
   r.block3_s = median(block);
   r.bytes_per_element = static_cast<double>(H->bytes()) / static_cast<double>(col.size());
+  if (const auto* fast = dynamic_cast<const FastOperator*>(H.get())) {
+    const FastStatistics& st = fast->statistics();
+    char d[512];
+    std::snprintf(d, sizeof d,
+                  "  pairs: near %zu, far %zu (coefficients %s); target clusters of levels 0..%d: %zu sources, "
+                  "%zu hidden, %zu admissible undecided; setup s: targets %.2f, coverings %.2f, far %.2f",
+                  st.near_pairs, st.far_pairs, st.far_stored ? "stored" : "recomputed", st.target_level, st.target_pairs,
+                  st.target_hidden_pairs, st.target_undecided_pairs, st.targets_s, st.covering_s, st.far_s);
+    r.detail = d;
+  }
   return r;
 }
 
@@ -86,6 +97,7 @@ void print(const Row& r) {
               to_string(r.visibility), static_cast<int>(r.n), r.setup_s, r.product_s, r.block3_s, r.bytes_per_element,
               r.work.visible_pairs,
               r.work.hidden_pairs, r.work.partial_pairs, r.work.clipped_elements);
+  if (!r.detail.empty()) std::printf("%s\n", r.detail.c_str());
   std::fflush(stdout);
 }
 

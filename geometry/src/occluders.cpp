@@ -133,6 +133,36 @@ struct Occluders::Impl {
     }
   };
 
+  /// Depth-first search of the tree for a face that may block the cluster shaft, stopping at the
+  /// first.
+  struct ClusterShaftSearch {
+    const Impl* impl;
+    const ClusterShaft* shaft;
+    bool blocked = false;
+    bool go_further() const { return !blocked; }
+    void intersection(const CGAL::Bbox_3&, const Primitive& p) {
+      const auto t = static_cast<std::size_t>(p.id() - impl->cgal_triangles.begin());
+      if (may_block(impl->faces[t], *shaft, impl->margin)) blocked = true;
+    }
+    template <class Node>
+    bool do_intersect(const CGAL::Bbox_3& box, const Node& node) const {
+      return CGAL::do_overlap(box, node.bbox());
+    }
+  };
+
+  bool any_may_block(const ClusterShaft& s) const {
+    if (faces.size() <= static_cast<std::size_t>(kLinearScanFaces)) {
+      for (const FaceData& f : faces)
+        if (may_block(f, s, margin)) return true;
+      return false;
+    }
+    const double m = margin;
+    const CGAL::Bbox_3 box(s.lo.x() - m, s.lo.y() - m, s.lo.z() - m, s.hi.x() + m, s.hi.y() + m, s.hi.z() + m);
+    ClusterShaftSearch search{this, &s};
+    tree.traversal(box, search);
+    return search.blocked;
+  }
+
   void collect(const Shaft& s, std::vector<Index>& out) const {
     out.clear();
     const Index n = static_cast<Index>(faces.size());
@@ -297,6 +327,14 @@ void Occluders::candidates(const Vec3& P, const Vec3& nP, const std::array<Vec3,
   }
   complete_shaft(s);
   impl_->collect(s, out);
+}
+
+ShaftClass Occluders::classify_clusters(const std::array<Vec3, 3>& sigma, const Vec3& nS,
+                                        const std::array<Vec3, 3>& tau, const Vec3& nT, bool faces) const {
+  ClusterShaft s;
+  const ShaftClass planes = make_cluster_shaft(sigma, nS, tau, nT, impl_->margin, s);
+  if (planes != ShaftClass::full || !faces) return planes;
+  return impl_->any_may_block(s) ? ShaftClass::partial : ShaftClass::full;
 }
 
 ShaftClass Occluders::classify(const Vec3& P, const Vec3& nP, const std::array<Vec3, 3>& tau, const Vec3& nQ,

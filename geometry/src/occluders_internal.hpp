@@ -66,6 +66,33 @@ void complete_shaft(Shaft& s);
 /// planes through P and tau's edges) up to the margin, or its plane passes through P (edge-on).
 bool may_meet(const FaceData& f, const Shaft& s);
 
+/// The shaft between two triangles sigma and tau: conv(sigma, tau), which holds every segment PQ
+/// with P in sigma and Q in tau, given by its box and its supporting planes among the planes of
+/// sigma and tau and those through an edge of one and a corner of the other (every face of the
+/// convex hull of two triangles is one of these).
+struct ClusterShaft {
+  std::array<Vec3, 6> x;             ///< sigma's corners, then tau's
+  std::array<Vec3, 20> out_n;        ///< unit outward normals of the supporting planes
+  std::array<double, 20> out_d{};    ///< their offsets: out_n . y <= out_d on the shaft (up to rounding)
+  int planes = 0;
+  Vec3 lo, hi;                       ///< bounding box of the six corners
+};
+
+/// The class of tau seen from every point of sigma by the planes alone (nS, nT their front
+/// normals): hidden when tau lies on or behind sigma's plane (its corners within the margin in
+/// front at most) or sigma behind tau's plane by more than the margin, as the point shaft
+/// (make_shaft) decides for every P of sigma; full when each lies farther than the margin in front
+/// of the other's plane (the shaft s is then set up, and the class stays full only if no face may
+/// block it); partial otherwise (undecided here: the points decide).
+ShaftClass make_cluster_shaft(const std::array<Vec3, 3>& sigma, const Vec3& nS, const std::array<Vec3, 3>& tau,
+                              const Vec3& nT, double margin, ClusterShaft& s);
+
+/// False when face f cannot block a segment of the shaft by more than the margin: an axis
+/// separates them up to the margin (its plane leaves all six corners on one side, it lies on the
+/// outer side of a supporting plane of the shaft, or an edge of it crossed with a segment between
+/// two corners of the shaft separates them). True means they meet, to within the margin.
+bool may_block(const FaceData& f, const ClusterShaft& s, double margin);
+
 /// A convex polygon of tau's plane in the frame (u, w) at t[0], counter-clockwise (cast_shadow
 /// leaves its box unset).
 using Shadow = PlaneShadow;

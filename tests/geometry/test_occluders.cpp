@@ -911,3 +911,61 @@ TEST(Occluders, AnEdgeSeenEndOnHidesAllItsFacesCover) {
   EXPECT_GT(part.area, 0);
   EXPECT_LT(part.area, 1e-5 * area(tau)) << "a wedge about 3e-7 wide at A";
 }
+
+// Cluster to cluster: a triangle sigma on the ceiling and tau on the floor with blockers between
+// (random_config's). Full must mean that every point of sigma sees all of tau: no sampled segment
+// between them is blocked (the ray test, an independent algorithm) and the point shafts of sampled
+// points of sigma are full. Hidden must mean hidden from each point. Both full and undecided occur.
+TEST(Occluders, ClusterPairsFullOnlyWhenEverySegmentIsClear) {
+  std::mt19937_64 rng(20261207);
+  std::uniform_real_distribution<double> u01(0, 1);
+  const Vec3 nS(0, 0, -1), nT(0, 0, 1);
+  const auto point_in = [&](const Tri& t) {
+    double a = u01(rng), b = u01(rng);
+    if (a + b > 1) {
+      a = 1 - a;
+      b = 1 - b;
+    }
+    return Vec3(t[0] + a * (t[1] - t[0]) + b * (t[2] - t[0]));
+  };
+  int full = 0, undecided = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const RandomConfig c = random_config(rng);
+    const double size = 0.02 + 0.4 * u01(rng);
+    Tri sigma;
+    for (Vec3& v : sigma) v = c.P + size * Vec3(2 * u01(rng) - 1, 2 * u01(rng) - 1, 0);
+    if ((sigma[1] - sigma[0]).cross(sigma[2] - sigma[0]).z() > 0) std::swap(sigma[1], sigma[2]);  // faces down
+    std::vector<Tri> tris = {c.tau, sigma};
+    tris.insert(tris.end(), c.blockers.begin(), c.blockers.end());
+    const Occluders occ(mesh_of(tris));
+    const ShaftClass cls = occ.classify_clusters(sigma, nS, c.tau, nT);
+    ASSERT_NE(cls, ShaftClass::hidden) << "trial " << trial << ": they face each other";
+    if (cls == ShaftClass::partial) {
+      ++undecided;
+      continue;
+    }
+    ++full;
+    for (int k = 0; k < 400; ++k) {
+      const Vec3 P = point_in(sigma), Q = point_in(c.tau);
+      ASSERT_TRUE(occ.visible(P, Q)) << "trial " << trial << ", segment " << k;
+    }
+    for (int k = 0; k < 5; ++k) {
+      const Vec3 P = point_in(sigma);
+      std::vector<Index> among, meeting;
+      occ.candidates(P, nS, c.tau, nT, among);
+      EXPECT_EQ(occ.classify(P, nS, c.tau, nT, among, meeting), ShaftClass::full) << "trial " << trial;
+    }
+  }
+  EXPECT_GT(full, 30);
+  EXPECT_GT(undecided, 30);
+  // Hidden by the planes: tau behind sigma's plane, or sigma behind tau's.
+  const Tri floor{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+  const Tri above{Vec3(0, 0, 1), Vec3(0, 1, 1), Vec3(1, 0, 1)};
+  const Occluders occ(mesh_of({floor, above}));
+  EXPECT_EQ(occ.classify_clusters(above, Vec3(0, 0, 1), floor, nT), ShaftClass::hidden);  // sigma faces away
+  EXPECT_EQ(occ.classify_clusters(above, nS, floor, Vec3(0, 0, -1)), ShaftClass::hidden);  // tau faces away
+  EXPECT_EQ(occ.classify_clusters(above, nS, floor, nT), ShaftClass::full);
+  // tau crossing sigma's plane: undecided (cut for the points, not for the pair).
+  const Tri upright{Vec3(0.2, 0.5, 0.5), Vec3(0.8, 0.5, 0.5), Vec3(0.5, 0.5, 1.5)};
+  EXPECT_EQ(occ.classify_clusters(above, nS, upright, Vec3(0, -1, 0)), ShaftClass::partial);
+}

@@ -262,12 +262,19 @@ TEST_F(CubeLevel4, DeepTargetLevelsSameForAnyThreadCount) {
   EXPECT_LT(error(FastOperator(*collocation, o), v), 1.25 * error(FastOperator(*collocation, options(4)), v));
 }
 
-// With V (occluders given) the coverings stay per point; below min_points nothing changes either:
-// the same coverings and product, bit for bit, as with target clusters off.
-TEST_F(CubeLevel4, PerPointWhenOccludedOrTooSmall) {
+// With V (occluders given) on a convex surface every (target, cluster) shaft is clear: the same
+// targets and sources as without, none hidden or undecided (target_clusters.hpp). Below
+// min_points nothing changes: the same coverings and product, bit for bit, as with target
+// clusters off.
+TEST_F(CubeLevel4, OccludedTakesTheSameTargetsAndTooSmallNone) {
   FastOptions occluded = options(4);
   occluded.occluders = scene_occluders(collocation->tree());
-  EXPECT_EQ(FastOperator(*collocation, occluded).statistics().target_level, -1);
+  const FastOperator seen(*collocation, occluded), plain(*collocation, options(4));
+  EXPECT_GE(plain.statistics().target_level, 0);
+  EXPECT_EQ(seen.statistics().target_level, plain.statistics().target_level);
+  EXPECT_EQ(seen.statistics().target_pairs, plain.statistics().target_pairs);
+  EXPECT_EQ(seen.statistics().target_hidden_pairs, 0u);
+  EXPECT_EQ(seen.statistics().target_undecided_pairs, 0u);
   FastOptions small = options(4);
   small.local.min_points = 1 << 20;  // more points than any cluster holds
   const FastOperator a(*collocation, small), b(*collocation, options(4, false));

@@ -120,16 +120,6 @@ void FastOperator::cover_row(Index i, double rho, CoveringLists& lists, Covering
   const Vec3& P = tree.collocation_point(i);
   const Vec3& nP = tree.cluster(L, i).normal;
   const auto add_far = [&](int l, Index k) { lists.far_cluster.push_back(cluster_id(l, k)); };
-  if (options_.occluders) {
-    cover_visible(
-        tree, *options_.occluders, P, nP, tree.plane(L, i), options_.eta, lists.integrate_near, add_far,
-        [&](Index e, double value) {
-          lists.near_col.push_back(e);
-          lists.near_val.push_back(rho * value);  // (43), first sum, over the visible part
-        },
-        tally.counts, lists.scratch);
-    return;
-  }
   const ClusterRef* starts = nullptr;
   std::int64_t count = 0;
   if (targets_) {  // the clusters left by P's target cluster of level lt; its coplanar roots
@@ -137,6 +127,16 @@ void FastOperator::cover_row(Index i, double rho, CoveringLists& lists, Covering
     starts = targets_->start.data() + targets_->start_start[a];
     count = targets_->start_start[a + 1] - targets_->start_start[a];
     tally.skipped += static_cast<std::size_t>(targets_->coplanar_roots[static_cast<std::size_t>(i >> (2 * L))]);
+  }
+  if (options_.occluders) {
+    cover_visible(
+        tree, *options_.occluders, P, nP, tree.plane(L, i), options_.eta, lists.integrate_near, add_far,
+        [&](Index e, double value) {
+          lists.near_col.push_back(e);
+          lists.near_val.push_back(rho * value);  // (43), first sum, over the visible part
+        },
+        tally.counts, lists.scratch, starts, count);
+    return;
   }
   cover(
       tree, P, tree.plane(L, i), options_.eta, starts, count, add_far,

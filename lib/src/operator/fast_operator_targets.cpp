@@ -16,15 +16,15 @@ using geometry::Index;
 
 // The levels, degree and eta_t of the target clusters of an operator of `options` on a tree of
 // finest level L: levels 0..lt, lt the finest level whose clusters hold at least min_points
-// collocation points; lt = -1 when there are none (local expansions off, an occluded scene, or
-// no level with that many points).
+// collocation points; lt = -1 when there are none (local expansions off, or no level with that
+// many points). With V the pairs are classified for whole targets (target_clusters.hpp).
 FastOperator::TargetPlan FastOperator::target_plan(const FastOptions& options, int L) {
   const LocalExpansionOptions& local = options.local;
   TargetPlan plan;
   plan.degree = local.degree >= 0 ? local.degree : default_local_degree(options.degree);
   plan.eta = local.eta > 0 ? local.eta : options.eta;
   const std::int64_t min_points = local.min_points > 0 ? local.min_points : num_local_points(plan.degree) + 1;
-  if (!local.enabled || options.occluders) return plan;
+  if (!local.enabled) return plan;
   for (int l = 0; l <= L; ++l)
     if ((std::int64_t{1} << (2 * (L - l))) >= min_points) plan.level = l;
   return plan;
@@ -51,7 +51,8 @@ std::shared_ptr<TargetClusters> FastOperator::make_target_clusters(const geometr
     }
   }
   return std::make_shared<TargetClusters>(
-      build_target_clusters(tree, frames.data(), offset, unit, options.eta, plan.eta, plan.level, plan.degree));
+      build_target_clusters(tree, frames.data(), offset, unit, options.eta, plan.eta, plan.level, plan.degree,
+                            options.occluders.get()));
 }
 
 // The target clusters' slots: a target gets a slot for its values in a product when it holds a
@@ -91,6 +92,8 @@ void FastOperator::setup_target_clusters(std::shared_ptr<TargetClusters> targets
       stats_.target_pairs += static_cast<std::size_t>(targets->sources(id));
       stats_.target_point_pairs += static_cast<std::size_t>(targets->sources(id)) << (2 * (L - l));
     }
+  stats_.target_hidden_pairs = targets->hidden_pairs;
+  stats_.target_undecided_pairs = targets->undecided_pairs;
   stats_.target_level = lt;
   stats_.local_degree = targets->degree;
   targets_ = std::move(targets);

@@ -28,7 +28,7 @@ double round_up(double x) { return x * (1.0 + 0x1p-50); }
 // a level's records are allocated unwritten, each then written once by its traversal.
 struct Found {
   std::int64_t source_at, pass_at;
-  std::int32_t sources, passes, thread, coplanar;
+  std::int32_t sources, passes, thread, coplanar, hidden, undecided;
 };
 
 // The subtrees of the fused levels: at least this many a thread, for the dynamic schedule to
@@ -84,8 +84,9 @@ void join_levels(std::span<const KeptVector<Found>> found, std::vector<std::int6
 class TargetBuilder {
  public:
   TargetBuilder(const geometry::ClusterTree& tree, const PlaneFrame* frames, const std::vector<Index>& level_offset,
-                double unit_scale, double eta, double eta_t, int lt, TargetClusters& out)
-      : tree_(tree), frames_(frames), level_offset_(level_offset), unit_scale_(unit_scale),
+                double unit_scale, double eta, double eta_t, int lt, const geometry::Occluders* occluders,
+                TargetClusters& out)
+      : tree_(tree), occluders_(occluders), frames_(frames), level_offset_(level_offset), unit_scale_(unit_scale),
         inv_scale_(1.0 / unit_scale),  // a power of two: exact
         eta_(eta), eta_t_(eta_t), lt_(lt), L_(tree.finest_level()), out_(out),
         threads_(std::max(1, omp_get_max_threads())), found_(static_cast<std::size_t>(lt) + 1),
@@ -110,6 +111,11 @@ class TargetBuilder {
     out_.coplanar_roots.resize(static_cast<std::size_t>(tree_.num_roots()));
     for (Index k = 0; k < tree_.num_roots(); ++k)
       out_.coplanar_roots[static_cast<std::size_t>(k)] = found_[0][static_cast<std::size_t>(k)].coplanar;
+    for (const KeptVector<Found>& level : found_)
+      for (const Found& f : level) {
+        out_.hidden_pairs += static_cast<std::size_t>(f.hidden);
+        out_.undecided_pairs += static_cast<std::size_t>(f.undecided);
+      }
     join_levels(found_, out_.source_start, out_.source, [](const Found& f) { return std::int64_t{f.sources}; },
                 [](const Found& f) { return f.source_at; },
                 [&](std::size_t l, const Found& f) -> const KeptVector<Index>& {
@@ -122,6 +128,14 @@ class TargetBuilder {
                 [&](std::size_t, const Found& f) -> const KeptVector<Item>& {
                   return passes_[static_cast<std::size_t>(lt_)][static_cast<std::size_t>(f.thread)].items;
                 });
+    // Each target's starts grouped by root (stable: deterministic), so that a point's walk casts
+    // the shadows on a root once for all its starts there (visible_covering.hpp).
+    const Index m = tree_.level_size(lt_);
+#pragma omp parallel for schedule(dynamic, 256)
+    for (Index k = 0; k < m; ++k)
+      std::stable_sort(out_.start.begin() + out_.start_start[static_cast<std::size_t>(k)],
+                       out_.start.begin() + out_.start_start[static_cast<std::size_t>(k) + 1],
+                       [](const Item& a, const Item& b) { return (a.k >> (2 * a.level)) < (b.k >> (2 * b.level)); });
   }
 
  private:
@@ -155,10 +169,24 @@ class TargetBuilder {
         const Cluster& tau = tree_.cluster(it.level, it.k);
         if (tree_.plane(it.level, it.k) == plane) {
           ++f.coplanar;
-        } else if (geometry::is_admissible(c, tau.centre, round_up(tau.radius + round_up(eta_ * Rb)), eta_) &&
-                   geometry::is_admissible(c, tau.centre, round_up(Rb + round_up(eta_t_ * tau.radius)), eta_t_)) {
+          continue;
+        }
+        const bool admissible =
+            geometry::is_admissible(c, tau.centre, round_up(tau.radius + round_up(eta_ * Rb)), eta_) &&
+            geometry::is_admissible(c, tau.centre, round_up(Rb + round_up(eta_t_ * tau.radius)), eta_t_);
+        // With V: hidden from all of sigma by the planes, dropped; admissible, the faces looked at.
+        geometry::ShaftClass seen = geometry::ShaftClass::full;
+        if (occluders_) seen = occluders_->classify_clusters(sigma.vertex, sigma.normal, tau.vertex, tau.normal, admissible);
+        if (seen == geometry::ShaftClass::hidden) {
+          ++f.hidden;
+          continue;
+        }
+        if (admissible && seen == geometry::ShaftClass::full) {
           my_sources.push_back(id_of(it.level, it.k));
-        } else if (it.level < L_ && tau.radius >= Rb) {
+          continue;
+        }
+        if (admissible) ++f.undecided;
+        if (it.level < L_ && tau.radius >= Rb) {
           for (Index child = 3; child >= 0; --child) stack.push_back({it.level + 1, 4 * it.k + child});
         } else {
           my_pass.push_back(it);
@@ -228,6 +256,7 @@ class TargetBuilder {
   }
 
   const geometry::ClusterTree& tree_;
+  const geometry::Occluders* occluders_;
   const PlaneFrame* frames_;
   const std::vector<Index>& level_offset_;
   double unit_scale_, inv_scale_, eta_, eta_t_;
@@ -250,7 +279,7 @@ std::size_t TargetClusters::bytes() const {
 
 TargetClusters build_target_clusters(const geometry::ClusterTree& tree, const PlaneFrame* frames,
                                      const std::vector<Index>& level_offset, double unit_scale, double eta,
-                                     double eta_t, int lt, int d) {
+                                     double eta_t, int lt, int d, const geometry::Occluders* occluders) {
   const int L = tree.finest_level();
   if (lt < 0 || lt > L)
     throw std::invalid_argument("build_target_clusters: finest target level " + std::to_string(lt) + " outside [0, " +
@@ -261,7 +290,7 @@ TargetClusters build_target_clusters(const geometry::ClusterTree& tree, const Pl
   const Index targets = level_offset[static_cast<std::size_t>(lt) + 1];
   out.box.resize(static_cast<std::size_t>(targets));
   out.source_start.assign(static_cast<std::size_t>(targets) + 1, 0);
-  TargetBuilder builder(tree, frames, level_offset, unit_scale, eta, eta_t, lt, out);
+  TargetBuilder builder(tree, frames, level_offset, unit_scale, eta, eta_t, lt, occluders, out);
   builder.traverse_all();
   builder.join();
   return out;

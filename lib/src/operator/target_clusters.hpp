@@ -17,7 +17,15 @@
 // that the exact condition would refuse. A non-admissible tau is split when it is not a leaf and
 // at least as large as the rectangle (R(tau) >= R_b); otherwise it is handed to sigma's children,
 // and from level lt to the per-point coverings.
+//
+// With the line-of-sight function V (occluders given), each pair is first classified for all of
+// sigma at once (geometry::Occluders::classify_clusters): a pair hidden from every point of sigma
+// by the planes alone is dropped (its integral is 0 for each); an admissible pair is a source only
+// when tau is fully visible from all of sigma (no face may block a segment of conv(sigma, tau)),
+// and otherwise it is treated as a non-admissible one, split or handed down, so that the points
+// of sigma classify what is left (visible_covering.hpp).
 #include <panelrad/geometry/cluster_tree.hpp>
+#include <panelrad/geometry/occluders.hpp>
 #include <panelrad/support/uninitialized_vector.hpp>
 #include <panelrad/operator/local_expansion.hpp>
 #include <panelrad/support/kept_vector.hpp>
@@ -48,6 +56,9 @@ struct TargetClusters {
   /// Per root (level-0 cluster): the roots skipped as coplanar with it (each point of the root
   /// skips them too).
   std::vector<std::int32_t> coplanar_roots;
+  /// With V: the (target, cluster) pairs dropped as hidden from the whole target, and the admissible
+  /// ones not proven fully visible (split or handed down instead of taken as sources).
+  std::size_t hidden_pairs = 0, undecided_pairs = 0;
 
   bool empty() const { return finest_level < 0; }
   std::int64_t sources(geometry::Index id) const {
@@ -59,9 +70,9 @@ struct TargetClusters {
 /// The target clusters of levels 0..lt of `tree` (lt in [0, finest level]) with local
 /// expansions of degree d. `frames` are the clusters' frames by cluster id (level_offset's last entry of them) (origin A(tau) scaled
 /// by unit_scale, a power of two), `level_offset` the first id of each level. Deterministic for
-/// any thread count.
+/// any thread count. `occluders`: V computed (see above); null on a convex surface (V = 1).
 TargetClusters build_target_clusters(const geometry::ClusterTree& tree, const PlaneFrame* frames,
                                      const std::vector<geometry::Index>& level_offset, double unit_scale, double eta,
-                                     double eta_t, int lt, int d);
+                                     double eta_t, int lt, int d, const geometry::Occluders* occluders = nullptr);
 
 }  // namespace panelrad

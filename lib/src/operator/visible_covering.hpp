@@ -11,13 +11,18 @@
 // A cluster is a sub-triangle of its level-0 root (the midpoint subdivision), in the root's plane:
 // the shadows are cast once per (P, root) in 3-D (Occluders::classify with a ShadowPlane), and the
 // clusters below the root are classified in 2-D against them (Occluders::classify_within), the
-// candidates of a cluster being the root shadows that meet its parent.
+// candidates of a cluster being the root shadows that meet its parent. Below target clusters
+// (target_clusters.hpp) the walk starts from the clusters P's target hands down instead of the
+// roots: each start is classified in 2-D against the shadows cast on its root, as if reached
+// from the root.
 // With eta = 0 nothing is admissible: the walk gives every element's entry of the row, the dense
 // matrix (33) with visibility. Private to lib/src/operator.
 #include <panelrad/geometry/admissibility.hpp>
 #include <panelrad/geometry/cluster_tree.hpp>
 #include <panelrad/geometry/occluders.hpp>
 #include <panelrad/operator/near_field.hpp>
+
+#include "target_clusters.hpp"
 
 #include <array>
 #include <cstddef>
@@ -63,34 +68,81 @@ struct VisibleCoveringScratch {
     geometry::Index k;
     std::size_t among_begin, among_end;  // candidates in `pool`
     bool known_full;                     // an ancestor was fully visible
+    bool start;                          // a root or a start of the walk
   };
   std::vector<Item> stack;
   std::vector<geometry::Index> pool, meeting;  // candidate faces of a root; below it, indices of plane.shadows
   geometry::VisiblePart part;
   geometry::ShadowPlane plane;  // the root being walked (depth first: its subtree before the next root)
+  geometry::Index root = -1;    // the root of `plane` for starts below the roots
+  geometry::ShaftClass root_class = geometry::ShaftClass::full;
+  std::size_t root_shadows = 0;  // pool[0, root_shadows): all the root's shadows
 };
+
+/// The class of a start of the walk (a root, or a cluster below P's target clusters): a root by
+/// its own shaft, its shadows cast into s.plane (its children meet at most those: s.meeting becomes
+/// all of them); a start below a root against the shadows cast on its root, cast once for the
+/// starts of that root (they come grouped by root; pool[0, root_shadows) lists them all). The
+/// visible part into s.part at the elements.
+inline geometry::ShaftClass classify_start(const geometry::ClusterTree& tree, const geometry::Occluders& occluders,
+                                           const Vec3& P, const Vec3& nP, int level, geometry::Index k,
+                                           VisibleCoveringScratch& s) {
+  using geometry::Index;
+  using geometry::ShaftClass;
+  const geometry::Cluster& c = tree.cluster(level, k);
+  geometry::VisiblePart* part = level == tree.finest_level() ? &s.part : nullptr;
+  if (level == 0) {
+    s.root = -1;  // s.plane is this root's now, for its own subtree
+    occluders.candidates(P, nP, c.vertex, c.normal, s.meeting);
+    const ShaftClass cls = occluders.classify(P, nP, c.vertex, c.normal, s.meeting, s.plane, part);
+    s.meeting.resize(s.plane.shadows.size());
+    for (std::size_t j = 0; j < s.meeting.size(); ++j) s.meeting[j] = static_cast<Index>(j);
+    return cls;
+  }
+  const Index root = k >> (2 * level);
+  if (root != s.root) {
+    s.root = root;
+    const geometry::Cluster& r = tree.cluster(0, root);
+    occluders.candidates(P, nP, r.vertex, r.normal, s.meeting);
+    s.root_class = occluders.classify(P, nP, r.vertex, r.normal, s.meeting, s.plane, nullptr);
+    s.pool.resize(s.plane.shadows.size());  // the subtrees of the previous root are done
+    for (std::size_t j = 0; j < s.pool.size(); ++j) s.pool[j] = static_cast<Index>(j);
+    s.root_shadows = s.pool.size();
+  }
+  if (s.root_class != ShaftClass::partial) return s.root_class;
+  return occluders.classify_within(s.plane, c.vertex, std::span<const Index>(s.pool.data(), s.root_shadows), s.meeting,
+                                   part);
+}
 
 /// Walks the tree for collocation point P (inner normal nP, in the tree's plane planeP; the roots
 /// in that plane are coplanar with P, G = 0 on them, and are skipped before any classification,
 /// counted in counts.coplanar): far(level, k) for the admissible,
 /// fully visible clusters; near(element, value) for the elements reached, with value the
 /// integral (1/pi) Int_Delta G V dS_Q (rho not applied). Deterministic: a fixed depth-first order.
+/// `starts` (count of them): the clusters where the walk starts, below P's target clusters (none
+/// coplanar with P); null: the roots.
 template <class Far, class Near>
 void cover_visible(const geometry::ClusterTree& tree, const geometry::Occluders& occluders, const Vec3& P,
                    const Vec3& nP, geometry::Index planeP, double eta, const NearFieldIntegrator& integrate_near, Far&& far, Near&& near,
-                   VisibilityCounts& counts, VisibleCoveringScratch& s) {
+                   VisibilityCounts& counts, VisibleCoveringScratch& s, const ClusterRef* starts = nullptr,
+                   std::int64_t count = 0) {
   using geometry::Cluster;
   using geometry::Index;
   using geometry::ShaftClass;
   const int L = tree.finest_level();
   s.stack.clear();
   s.pool.clear();
-  for (Index root = tree.num_roots() - 1; root >= 0; --root) {
-    if (tree.plane(0, root) == planeP) {
-      ++counts.coplanar;
-      continue;
+  s.root = -1;
+  if (starts) {
+    for (std::int64_t j = count - 1; j >= 0; --j) s.stack.push_back({starts[j].level, starts[j].k, 0, 0, false, true});
+  } else {
+    for (Index root = tree.num_roots() - 1; root >= 0; --root) {
+      if (tree.plane(0, root) == planeP) {
+        ++counts.coplanar;
+        continue;
+      }
+      s.stack.push_back({0, root, 0, 0, false, true});
     }
-    s.stack.push_back({0, root, 0, 0, false});
   }
   while (!s.stack.empty()) {
     const VisibleCoveringScratch::Item it = s.stack.back();
@@ -98,12 +150,8 @@ void cover_visible(const geometry::ClusterTree& tree, const geometry::Occluders&
     const Cluster& c = tree.cluster(it.level, it.k);
     ShaftClass cls = ShaftClass::full;
     if (!it.known_full) {
-      if (it.level == 0) {
-        occluders.candidates(P, nP, c.vertex, c.normal, s.meeting);
-        cls = occluders.classify(P, nP, c.vertex, c.normal, s.meeting, s.plane, it.level == L ? &s.part : nullptr);
-        // The root's children meet at most the shadows cast on the root.
-        s.meeting.resize(s.plane.shadows.size());
-        for (std::size_t j = 0; j < s.meeting.size(); ++j) s.meeting[j] = static_cast<Index>(j);
+      if (it.start) {
+        cls = classify_start(tree, occluders, P, nP, it.level, it.k, s);
       } else {
         cls = occluders.classify_within(
             s.plane, c.vertex, std::span<const Index>(s.pool.data() + it.among_begin, it.among_end - it.among_begin),
@@ -115,12 +163,16 @@ void cover_visible(const geometry::ClusterTree& tree, const geometry::Occluders&
     }
     if (cls == ShaftClass::hidden) continue;
     if (cls == ShaftClass::full) {
-      if (eta > 0 && geometry::is_admissible(P, c.centre, c.radius, eta)) {
+      if (eta > 0 && it.level == L - 1 && geometry::is_admissible(P, c.centre, c.radius, eta)) {
+        // A cluster of four elements: their near entries (4 x 12 bytes, 4 products a row) cost
+        // less than its far pair (an id and T coefficients, T terms a product) and are exact.
+        for (Index child = 0; child < 4; ++child) near(4 * it.k + child, integrate_near(P, nP, tree.cluster(L, 4 * it.k + child)));
+      } else if (eta > 0 && geometry::is_admissible(P, c.centre, c.radius, eta)) {
         far(it.level, it.k);
       } else if (it.level == L) {
         near(it.k, integrate_near(P, nP, c));
       } else {
-        for (Index child = 3; child >= 0; --child) s.stack.push_back({it.level + 1, 4 * it.k + child, 0, 0, true});
+        for (Index child = 3; child >= 0; --child) s.stack.push_back({it.level + 1, 4 * it.k + child, 0, 0, true, false});
       }
       continue;
     }
@@ -133,7 +185,7 @@ void cover_visible(const geometry::ClusterTree& tree, const geometry::Occluders&
     const std::size_t begin = s.pool.size();
     s.pool.insert(s.pool.end(), s.meeting.begin(), s.meeting.end());
     const std::size_t end = s.pool.size();
-    for (Index child = 3; child >= 0; --child) s.stack.push_back({it.level + 1, 4 * it.k + child, begin, end, false});
+    for (Index child = 3; child >= 0; --child) s.stack.push_back({it.level + 1, 4 * it.k + child, begin, end, false, false});
   }
 }
 

@@ -6,8 +6,9 @@ namespace panelrad {
 /// The cluster-cluster far field (cluster-cluster interactions): target clusters with at least
 /// `min_points` collocation points take the source clusters admissible for all of them through a
 /// local expansion of degree `degree` (operator/local_expansion.hpp), (degree+1)^2 far-field evaluations per pair instead of one
-/// per point; the finer levels keep the per-point coverings (42). Convex scenes only (with V, the
-/// coverings stay per point).
+/// per point; the finer levels keep the per-point coverings (42). With V a source is taken only
+/// when it is fully visible from all of the target (a cluster-to-cluster shaft test); the rest is
+/// left to the points.
 struct LocalExpansionOptions {
   bool enabled = true;
   /// Interpolation degree d in each in-plane coordinate, 0..12; -1: default_local_degree(M).

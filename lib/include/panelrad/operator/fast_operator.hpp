@@ -114,6 +114,8 @@ struct FastStatistics {
   std::size_t target_clusters = 0;     ///< target clusters with a local expansion (with sources)
   std::size_t target_pairs = 0;        ///< (target, source) cluster pairs of the local expansions
   std::size_t target_point_pairs = 0;  ///< the (point, cluster) pairs they stand for: sum of |sigma| over the pairs
+  std::size_t target_hidden_pairs = 0;     ///< occluded: (target, cluster) pairs hidden from the whole target
+  std::size_t target_undecided_pairs = 0;  ///< occluded: admissible (target, cluster) pairs not proven fully visible
   bool far_stored = false;             ///< coefficients stored (true) or recomputed per product
   std::size_t bytes = 0;               ///< bytes held by the operator
   double geometry_s = 0;   ///< setup: cluster frames and element moments
