@@ -185,8 +185,8 @@ class TargetBuilder {
           my_sources.push_back(id_of(it.level, it.k));
           continue;
         }
-        if (admissible) ++f.undecided;
-        if (it.level < L_ && tau.radius >= Rb) {
+        if (admissible) ++f.undecided;  // handed down whole (target_clusters.hpp)
+        if (!admissible && it.level < L_ && tau.radius >= Rb) {
           for (Index child = 3; child >= 0; --child) stack.push_back({it.level + 1, 4 * it.k + child});
         } else {
           my_pass.push_back(it);

@@ -22,8 +22,9 @@
 // sigma at once (geometry::Occluders::classify_clusters): a pair hidden from every point of sigma
 // by the planes alone is dropped (its integral is 0 for each); an admissible pair is a source only
 // when tau is fully visible from all of sigma (no face may block a segment of conv(sigma, tau)),
-// and otherwise it is treated as a non-admissible one, split or handed down, so that the points
-// of sigma classify what is left (visible_covering.hpp).
+// and otherwise it is handed down whole (not split: its parts would mostly be undecided too, and
+// a point classifies a whole cluster once where it would classify each part), so that sigma's
+// children, and from level lt the points, decide it (visible_covering.hpp).
 #include <panelrad/geometry/cluster_tree.hpp>
 #include <panelrad/geometry/occluders.hpp>
 #include <panelrad/support/uninitialized_vector.hpp>
