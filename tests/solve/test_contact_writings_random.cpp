@@ -19,6 +19,8 @@
 namespace panelrad {
 namespace {
 
+const testing::Frame kOrigin{"origin", 1.0, Vec3::Zero()};
+
 TEST(ContactWritingsSweep, EveryFamilyEveryWritingSolvesToTheConstant) {
   const std::vector<testing::PolygonScene> families = testing::contact_families();
   const std::vector<testing::Frame> frames = {{"origin", 1.0, Vec3::Zero()},
@@ -53,22 +55,24 @@ TEST(ContactWritingsSweep, EveryFamilyEveryWritingSolvesToTheConstant) {
   std::printf("%d scenes; largest error relative to its bound %.3g (scene %d)\n", scenes, worst, worst_index);
 }
 
-/// Each family of contact_scenes.hpp under 20 random rotations about the room's centre (seed 7,
-/// the same rotations for every `digits`), random first corners, shared and separate vertex lines
-/// in turn, written with `digits`: validated and solved by the closed-scene oracle at level 0,
-/// each accepted and solved, then `check`(run).
+/// Each family of contact_scenes.hpp under `rotations` random rotations about the room's centre
+/// (from `seed`: the same rotations for every `digits` and frame), random first corners, shared
+/// and separate vertex lines in turn, in `frame`, written with `digits`: validated and solved by
+/// the closed-scene oracle at level 0, each accepted and solved, then `check`(run).
 template <class Check>
-void for_each_rotated_writing(int digits, Check&& check) {
+void for_each_rotated_writing(int digits, const testing::Frame& frame, int rotations, std::uint64_t seed,
+                              Check&& check) {
   const std::vector<testing::PolygonScene> families = testing::contact_families();
-  std::mt19937_64 rng(7);
+  std::mt19937_64 rng(seed);
   for (std::size_t f = 0; f < families.size(); ++f)
-    for (int r = 0; r < 20; ++r) {
+    for (int r = 0; r < rotations; ++r) {
       testing::Writing w;
       w.rotation = testing::random_rotation(rng);
       w.first_corner = -1;
       w.separate = (r % 2) == 1;
       w.digits = digits;
       w.seed = rng();
+      w.frame = frame;
       const testing::OracleRun run = testing::run_constant_oracle(testing::read_scene(families[f], w), 1.0, 0);
       SCOPED_TRACE(families[f].name + ", " + w.describe());
       ASSERT_TRUE(run.valid) << run.describe();
@@ -85,7 +89,7 @@ void for_each_rotated_writing(int digits, Check&& check) {
 TEST(ContactWritingsSweep, EveryFamilyRotatedSolvesToTheConstant) {
   int scenes = 0;
   double worst = 0;
-  for_each_rotated_writing(17, [&](const testing::OracleRun& run) {
+  for_each_rotated_writing(17, kOrigin, 20, 7, [&](const testing::OracleRun& run) {
     ++scenes;
     EXPECT_LE(run.error, run.tolerance) << run.describe();
     worst = std::max(worst, run.error / run.tolerance);
@@ -103,7 +107,7 @@ TEST(ContactWritingsSweep, EveryFamilyRotatedAndRoundedSolvesToTheConstant) {
   for (int digits : {6, 9}) {
     int scenes = 0;
     double worst = 0;
-    for_each_rotated_writing(digits, [&](const testing::OracleRun& run) {
+    for_each_rotated_writing(digits, kOrigin, 20, 7, [&](const testing::OracleRun& run) {
       ++scenes;
       EXPECT_LE(run.error, 1e-9) << run.describe();
       worst = std::max(worst, run.error);
@@ -122,7 +126,6 @@ TEST(ContactWritingsSweep, EveryFamilyRotatedAndRoundedSolvesToTheConstant) {
 // visibility's margin (64 eps max |x|, 1.4e-8 of the room there) rather than the coordinates'
 // spacing sets the error, up to about twice the oracle's bound (docs/scenes-and-visibility.md).
 TEST(ContactWritingsSweep, EveryFamilyRotatedInEveryFrameSolvesToTheConstant) {
-  const std::vector<testing::PolygonScene> families = testing::contact_families();
   struct Case {
     testing::Frame frame;
     int digits;
@@ -131,26 +134,13 @@ TEST(ContactWritingsSweep, EveryFamilyRotatedInEveryFrameSolvesToTheConstant) {
                                    {{"large", 1e3, Vec3::Zero()}, 6},         {{"large", 1e3, Vec3::Zero()}, 9},
                                    {{"large", 1e3, Vec3::Zero()}, 17},        {{"moved", 1.0, Vec3(1e6, -1e6, 1e6)}, 6}};
   for (const Case& c : cases) {
-    std::mt19937_64 rng(11);
     double worst = 0;
     int scenes = 0;
-    for (std::size_t f = 0; f < families.size(); ++f)
-      for (int r = 0; r < 5; ++r) {
-        testing::Writing w;
-        w.rotation = testing::random_rotation(rng);
-        w.first_corner = -1;
-        w.separate = (r % 2) == 1;
-        w.digits = c.digits;
-        w.seed = rng();
-        w.frame = c.frame;
-        const testing::OracleRun run = testing::run_constant_oracle(testing::read_scene(families[f], w), 1.0, 0);
-        SCOPED_TRACE(families[f].name + ", " + w.describe());
-        ASSERT_TRUE(run.valid) << run.describe();
-        ASSERT_TRUE(run.solved) << run.describe();
-        EXPECT_LE(run.error, run.tolerance) << run.describe();
-        worst = std::max(worst, run.error / run.tolerance);
-        ++scenes;
-      }
+    for_each_rotated_writing(c.digits, c.frame, 5, 11, [&](const testing::OracleRun& run) {
+      EXPECT_LE(run.error, run.tolerance) << run.describe();
+      worst = std::max(worst, run.error / run.tolerance);
+      ++scenes;
+    });
     std::printf("%d rotated scenes, %s, %d digits: largest error relative to the oracle's bound %.3g\n", scenes,
                 c.frame.describe().c_str(), c.digits, worst);
   }
