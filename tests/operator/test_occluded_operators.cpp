@@ -122,16 +122,19 @@ TEST(OccludedDense, WithoutVisibilityEntriesTurnNegative) {
 // 1 / (1 - rho_max) = 1 / 0.3, with the solver's tolerance set to 1e-13); fast within the accuracy
 // the solver states for it: the self-check value delta bounds ||u - u_f|| / ||u_f|| by
 // delta rho_max / (1 - rho_max) (fast_operator.hpp), plus the iteration's tolerance; 2x margin
-// for the sampled estimate.
+// for the sampled estimate. Fast at level 3 too, where the target clusters take the sources
+// visible from all of them (target_clusters.hpp).
 TEST(OccludedSolve, ConstantSolutionInClosedEnclosures) {
   const double c = 2.5;
+  std::size_t target_sources = 0;
   for (geometry::TriangleMesh mesh : closed_enclosures()) {
     const std::string name = mesh.source;
     const Scene scene = general_scene(std::move(mesh), facet_rho, [&](Index f) { return c * (1 - facet_rho(f)); });
-    for (const OperatorMethod method : {OperatorMethod::dense, OperatorMethod::fast}) {
-      SCOPED_TRACE(name + ", " + to_string(method));
+    for (const auto& [method, level] : {std::pair{OperatorMethod::dense, 2}, std::pair{OperatorMethod::fast, 2},
+                                        std::pair{OperatorMethod::fast, 3}}) {
+      SCOPED_TRACE(name + ", " + to_string(method) + ", level " + std::to_string(level));
       SolveOptions o;
-      o.level = 2;
+      o.level = level;
       o.op = method == OperatorMethod::dense ? dense_options() : fast_options(0.4, 8);
       o.solver.tolerance = 1e-13;
       const RadiositySolver solver(scene, o);
@@ -150,9 +153,15 @@ TEST(OccludedSolve, ConstantSolutionInClosedEnclosures) {
         const double rho_max = 0.7;
         EXPECT_LT(err, 2 * delta * rho_max / (1 - rho_max) + 1e-12) << name << " delta " << delta;
         EXPECT_LT(err, 1e-4) << name;
+        if (level == 3) {
+          const FastStatistics& st = dynamic_cast<const FastOperator&>(solver.op()).statistics();
+          EXPECT_GE(st.target_level, 0);
+          target_sources += st.target_pairs;
+        }
       }
     }
   }
+  EXPECT_GT(target_sources, 0u) << "some target cluster at level 3 must take a visible source";
 }
 
 // Direct lighting under a blocker: floor points see the emitter (E = 1, rho = 0) past an opaque
