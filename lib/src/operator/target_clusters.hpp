@@ -58,7 +58,7 @@ struct TargetClusters {
   /// skips them too).
   std::vector<std::int32_t> coplanar_roots;
   /// With V: the (target, cluster) pairs dropped as hidden from the whole target, and the admissible
-  /// ones not proven fully visible (split or handed down instead of taken as sources).
+  /// ones not proven fully visible (handed down whole instead of taken as sources).
   std::size_t hidden_pairs = 0, undecided_pairs = 0;
 
   bool empty() const { return finest_level < 0; }

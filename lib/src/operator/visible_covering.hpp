@@ -163,11 +163,12 @@ void cover_visible(const geometry::ClusterTree& tree, const geometry::Occluders&
     }
     if (cls == ShaftClass::hidden) continue;
     if (cls == ShaftClass::full) {
-      if (eta > 0 && it.level == L - 1 && geometry::is_admissible(P, c.centre, c.radius, eta)) {
+      const bool admissible = eta > 0 && geometry::is_admissible(P, c.centre, c.radius, eta);
+      if (admissible && it.level == L - 1) {
         // A cluster of four elements: their near entries (4 x 12 bytes, 4 products a row) cost
         // less than its far pair (an id and T coefficients, T terms a product) and are exact.
         for (Index child = 0; child < 4; ++child) near(4 * it.k + child, integrate_near(P, nP, tree.cluster(L, 4 * it.k + child)));
-      } else if (eta > 0 && geometry::is_admissible(P, c.centre, c.radius, eta)) {
+      } else if (admissible) {
         far(it.level, it.k);
       } else if (it.level == L) {
         near(it.k, integrate_near(P, nP, c));

@@ -175,10 +175,11 @@ class Occluders {
 
   /// The class of tau seen from every point of sigma (two triangles, nS and nT their front
   /// normals), for the cluster-to-cluster far field: hidden when the planes alone hide tau from
-  /// each point of sigma (as classify decides for each); full when neither crosses the other's plane
-  /// by more than the margin and no face may block a segment of conv(sigma, tau) (an axis separates
-  /// each face from the hull, up to the margin: the separating axis theorem); partial otherwise, which here means undecided: the points decide. With
-  /// `faces` false the faces are not looked at: full then means that the planes alone allow it.
+  /// each point of sigma (as classify decides for each); full when neither crosses the other's
+  /// plane by more than the margin and no face may block a segment of conv(sigma, tau) (an axis
+  /// separates each face from the hull, up to the margin: the separating axis theorem); partial
+  /// otherwise, which here means undecided: the points decide. With `faces` false the faces are
+  /// not looked at: full then means that the planes alone allow it.
   ShaftClass classify_clusters(const std::array<Vec3, 3>& sigma, const Vec3& nS, const std::array<Vec3, 3>& tau,
                                const Vec3& nT, bool faces = true) const;
 
