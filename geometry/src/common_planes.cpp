@@ -198,6 +198,30 @@ void corners_on_edges(const TriangleMesh& mesh, const std::vector<Index>& tris, 
   }
 }
 
+/// Corners whose moves would leave a triangle without area (collinear corners, exactly) or turned
+/// over keep their positions as written, until every triangle is as proper as it was written: a
+/// triangle smaller than the moves (16 tolerances at most) may otherwise be flattened by the planes
+/// of its neighbours.
+void keep_triangles_proper(const TriangleMesh& mesh, std::vector<Vec3>& moved) {
+  const auto normal = [](const std::vector<Vec3>& x, const Tri& t) {
+    return Vec3((x[at(t[1])] - x[at(t[0])]).cross(x[at(t[2])] - x[at(t[0])]));
+  };
+  const auto point = [&](Index v) { return Point(moved[at(v)].x(), moved[at(v)].y(), moved[at(v)].z()); };
+  for (bool again = true; again;) {
+    again = false;
+    for (const Tri& t : mesh.triangles) {
+      if (moved[at(t[0])] == mesh.vertices[at(t[0])] && moved[at(t[1])] == mesh.vertices[at(t[1])] &&
+          moved[at(t[2])] == mesh.vertices[at(t[2])])
+        continue;
+      if (!CGAL::collinear(point(t[0]), point(t[1]), point(t[2])) &&
+          normal(moved, t).dot(normal(mesh.vertices, t)) > 0)
+        continue;
+      for (Index v : t) moved[at(v)] = mesh.vertices[at(v)];
+      again = true;
+    }
+  }
+}
+
 }  // namespace
 
 Sz snap_to_common_planes(TriangleMesh& mesh, const ContactTolerance& tolerance) {
@@ -279,6 +303,7 @@ Sz snap_to_common_planes(TriangleMesh& mesh, const ContactTolerance& tolerance) 
     }
     if (!any_line || largest_residual(classes, moved) <= tolerance.resolution) break;
   }
+  keep_triangles_proper(mesh, moved);
   Sz count = 0;
   for (Sz v = 0; v < mesh.vertices.size(); ++v) count += moved[v] != mesh.vertices[v] ? 1 : 0;
   mesh.vertices = std::move(moved);

@@ -17,6 +17,9 @@
 // ones (exact predicates: a face of the triangulation lies on one side of every constraint). Kept
 // corners that are input vertices keep their index; new corners (where outlines cross) are lifted
 // to the triangle's plane exactly and rounded once to double, shared between triangles by value.
+// Constraints that cross are computed exactly (Exact_intersections_tag); CGAL's advice to use
+// Constrained_triangulation_plus_2 instead is printed on stderr at every crossing, not for users.
+#define CGAL_NO_CDT_2_WARNING
 #include "contact_removal.hpp"
 #include "t_junctions.hpp"
 

@@ -152,7 +152,9 @@ Sz split_round(TriangleMesh& mesh, const std::vector<Point>& p, std::vector<Inde
   for (const auto& [i, v] : candidates) {
     const Tri& tr = mesh.triangles[slots[i].t];
     const Index ia = corner(tr, slots[i].s), ib = corner(tr, slots[i].s + 1);
-    if (v == ia || v == ib) continue;
+    // Not a corner of the triangle itself: its apex within the tolerance of its own base (a
+    // sliver) would split it into two triangles with a repeated corner.
+    if (v == ia || v == ib || v == corner(tr, slots[i].s + 2)) continue;
     const Point &a = p[at(ia)], &b = p[at(ib)], &x = p[at(v)];
     const Vec3 d = mesh.vertices[at(ib)] - mesh.vertices[at(ia)];
     if ((!CGAL::collinear(a, x, b) || !CGAL::collinear_are_strictly_ordered_along_line(a, x, b)) &&
@@ -206,16 +208,20 @@ Sz split_round(TriangleMesh& mesh, const std::vector<Point>& p, std::vector<Inde
     const int s = slots[hits[first_hit[t]].slot].s;
     const Index c = corner(tr, s + 2);
     Index from = corner(tr, s);
-    for (Sz h = first_hit[t]; h < hit_end[t]; ++h) {
-      triangles.push_back({from, hits[h].v, c});
+    // A piece whose corners are collinear (a vertex within the tolerance of the edge but on the
+    // line through c and an end) has no area and is left out.
+    const auto piece = [&](Index x, Index y) {
+      if (CGAL::collinear(p[at(x)], p[at(y)], p[at(c)])) return;
+      triangles.push_back({x, y, c});
       facets.push_back(mesh.facet_of_triangle[t]);
       if (origin) from_triangle.push_back((*origin)[t]);
+    };
+    for (Sz h = first_hit[t]; h < hit_end[t]; ++h) {
+      piece(from, hits[h].v);
       from = hits[h].v;
       ++inserted;
     }
-    triangles.push_back({from, corner(tr, s + 1), c});
-    facets.push_back(mesh.facet_of_triangle[t]);
-    if (origin) from_triangle.push_back((*origin)[t]);
+    piece(from, corner(tr, s + 1));
   }
   if (origin) *origin = std::move(from_triangle);
   mesh.triangles = std::move(triangles);

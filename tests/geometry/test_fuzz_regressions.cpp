@@ -2,10 +2,12 @@
 // (also the fuzzer's seeds) goes through the fuzz target's checks, read as OFF and as OBJ: the
 // only failure allowed is a geometry::MeshError with a message; what parses is a consistent mesh,
 // and a mesh that validates either gives a finite cluster tree or is refused with a MeshError.
-// The fuzzer found no crash in 5 minutes (272,641 inputs); these are the hand-made adversarial
-// inputs (header counts near INT_MAX, index overflow, extreme coordinates) kept as a regression.
+// The hand-made adversarial inputs (header counts near INT_MAX, index overflow, extreme
+// coordinates) and the fuzzer's findings (sliver_apex_on_its_base.off: a face whose apex lies
+// within the contact tolerance of its own base, once split at its own corner) kept as a regression.
 #include <panelrad/geometry/cluster_tree.hpp>
 #include <panelrad/geometry/mesh_io.hpp>
+#include <panelrad/geometry/scene_validation.hpp>
 #include <panelrad/geometry/validation.hpp>
 
 #include <gtest/gtest.h>
@@ -55,6 +57,22 @@ void check_text(const std::string& text, bool obj, const std::string& what) {
   for (const auto& t : mesh.triangles)
     for (Index v : t) ASSERT_TRUE(v >= 0 && static_cast<std::size_t>(v) < mesh.vertices.size()) << what;
   for (const auto& p : mesh.vertices) ASSERT_TRUE(p.allFinite()) << what;
+  // As a scene (the convex check, then the general rules: joined corners, split T-junctions,
+  // faces moved onto common planes, contacts): a verdict that names its rule, no exception other
+  // than MeshError, and what is accepted has no triangle without area.
+  TriangleMesh scene = mesh;
+  try {
+    const SceneValidationReport scene_report = validate_scene(scene);
+    EXPECT_EQ(scene_report.valid, scene_report.rule.empty()) << what;
+    if (scene_report.valid)
+      for (const auto& t : scene.triangles) {
+        const Vec3 &a = scene.vertices[static_cast<std::size_t>(t[0])], &b = scene.vertices[static_cast<std::size_t>(t[1])],
+                   &c = scene.vertices[static_cast<std::size_t>(t[2])];
+        EXPECT_GT((b - a).cross(c - a).norm(), 0) << what;
+      }
+  } catch (const MeshError& e) {
+    EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << "the message names the file: " << e.what();
+  }
   const ValidationReport report = validate_closed_convex(mesh);
   EXPECT_EQ(report.valid, report.rule.empty()) << what;
   if (!report.valid) return;

@@ -326,3 +326,26 @@ TEST(TJunctions, LargeRandomGridBecomesConformingUpToItsBoundary) {
 }
 
 }  // namespace
+
+// A sliver whose apex lies within the tolerance of its own base: the apex is a corner of the
+// triangle, not a vertex inside the edge, so nothing is split (splitting there would give two
+// triangles with a repeated corner). A foreign vertex as close to the base is still inserted, and
+// no piece has collinear corners.
+TEST(TJunctions, ASliversOwnApexIsNotInsideItsBase) {
+  Builder b;
+  b.polygon({{0, 0, 0}, {1, 0, 0}, {0.5, 1e-9, 0}});
+  pg::TriangleMesh alone = b.mesh;
+  EXPECT_EQ(split_t_junctions(alone, nullptr, 1e-6), 0u);
+  EXPECT_EQ(alone.triangles, b.mesh.triangles);
+
+  b.polygon({{0.25, -1e-9, 0}, {0.3, -1, 0}, {0.2, -1, 0}});  // a corner 1e-9 below the base
+  pg::TriangleMesh with_foreign = b.mesh;
+  EXPECT_EQ(split_t_junctions(with_foreign, nullptr, 1e-6), 1u);
+  for (const auto& t : with_foreign.triangles) {
+    EXPECT_TRUE(t[0] != t[1] && t[1] != t[2] && t[2] != t[0]);
+    const pg::Vec3 &p = with_foreign.vertices[static_cast<std::size_t>(t[0])],
+                   &q = with_foreign.vertices[static_cast<std::size_t>(t[1])],
+                   &r = with_foreign.vertices[static_cast<std::size_t>(t[2])];
+    EXPECT_GT((q - p).cross(r - p).norm(), 0);
+  }
+}
