@@ -22,5 +22,6 @@ struct Command {
 Command add_check(CLI::App& panelrad);  ///< panelrad check
 Command add_cube(CLI::App& panelrad);   ///< panelrad cube
 Command add_solve(CLI::App& panelrad);  ///< panelrad solve
+Command add_view_factors(CLI::App& panelrad);  ///< panelrad viewfactors
 
 }  // namespace panelrad::cli

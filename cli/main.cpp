@@ -29,6 +29,7 @@ const char* kUsage =
     "      validate a scene mesh (OFF or OBJ): convex (V = 1) or general (V computed)\n"
     "  cube [options]   the paper's cube example (Table 1; --help for options)\n"
     "  solve SCENE [options]   solve an OBJ+MTL or OFF+JSON scene, write CSV/PLY/VTK/PNG (--help)\n"
+    "  viewfactors SCENE [options]   view factors between groups of surfaces, write CSV/NPY (--help)\n"
     "  version\n"
     "  help [COMMAND]\n";
 
@@ -87,7 +88,7 @@ int main(int argc, char** argv) {
   // One command; a further command name is then an argument of the first (an error).
   panelrad.require_subcommand(0, 1);
   const std::vector<Command> commands = {panelrad::cli::add_check(panelrad), panelrad::cli::add_cube(panelrad),
-                                         panelrad::cli::add_solve(panelrad)};
+                                         panelrad::cli::add_solve(panelrad), panelrad::cli::add_view_factors(panelrad)};
   const std::string version_line = "panelrad " + panelrad::version();
   CLI::App* version = panelrad.add_subcommand("version", "the program's version");
   CLI::App* help = panelrad.add_subcommand("help", "the commands, or one command's options");

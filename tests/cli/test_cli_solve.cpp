@@ -33,20 +33,9 @@ CliRun run(const std::string& args, const std::string& redirect = "2>&1") {
   return panelrad::testing::run_cli(args, redirect);
 }
 
-class CliSolve : public ::testing::Test {
+class CliSolve : public panelrad::testing::CliDirectoryTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("panelrad_cli_solve_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  void write(const std::string& name, const std::string& text) const { std::ofstream(dir_ / name) << text; }
-  std::size_t files() const {
-    return static_cast<std::size_t>(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()));
-  }
+  CliSolve() : CliDirectoryTest("cli_solve") {}
   // The unit cube as an OBJ with one material per face (face order: x=0, x=1, y=0, y=1, z=0, z=1).
   void write_cube_obj(const std::string& mtl_name, const std::vector<std::string>& materials) const {
     std::ostringstream os;
@@ -56,7 +45,6 @@ class CliSolve : public ::testing::Test {
     for (int f = 0; f < 6; ++f) os << "usemtl " << materials[static_cast<std::size_t>(f)] << "\nf " << faces[f] << "\n";
     write("cube.obj", os.str());
   }
-  fs::path dir_;
 };
 
 std::vector<std::vector<std::string>> read_csv(const std::string& file) {

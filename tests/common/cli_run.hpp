@@ -1,7 +1,12 @@
 #pragma once
 // Runs the panelrad program (PANELRAD_CLI, set by tests/CMakeLists.txt) for the CLI tests.
+#include <gtest/gtest.h>
+
 #include <array>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <sys/wait.h>
 
@@ -24,6 +29,28 @@ inline CliRun run_cli(const std::string& args, const std::string& redirect = "2>
   r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
   return r;
 }
+
+/// A test with a directory of its own, made empty before and removed after it:
+/// <tmp>/panelrad_<prefix>_<test name>.
+class CliDirectoryTest : public ::testing::Test {
+ protected:
+  explicit CliDirectoryTest(std::string prefix) : prefix_(std::move(prefix)) {}
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() /
+           ("panelrad_" + prefix_ + "_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  void write(const std::string& name, const std::string& text) const { std::ofstream(dir_ / name) << text; }
+  std::size_t files() const {
+    return static_cast<std::size_t>(
+        std::distance(std::filesystem::directory_iterator(dir_), std::filesystem::directory_iterator()));
+  }
+  std::string prefix_;
+  std::filesystem::path dir_;
+};
 
 }  // namespace panelrad::testing
 

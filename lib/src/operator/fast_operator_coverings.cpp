@@ -150,8 +150,10 @@ void FastOperator::cover_row(Index i, double rho, CoveringLists& lists, Covering
 void FastOperator::store_block(Index b, const CoveringLists& lists) {
   RowBlock& blk = blocks_[static_cast<std::size_t>(b)];
   const std::size_t rows = lists.near_count.size();
-  blk.lists = list_chunks_.allocate(omp_get_thread_num(),
-                                    RowBlock::list_bytes(rows, lists.near_col.size(), lists.far_cluster.size()));
+  const std::size_t value_bytes = options_.single_precision_near ? sizeof(float) : sizeof(double);
+  blk.lists = list_chunks_.allocate(omp_get_thread_num(), RowBlock::list_bytes(rows, lists.near_col.size(),
+                                                                               lists.far_cluster.size(), value_bytes));
+  blk.value_bytes = static_cast<std::uint32_t>(value_bytes);
   blk.rows = static_cast<std::uint32_t>(rows);
   blk.near = static_cast<std::uint32_t>(lists.near_col.size());
   blk.far = static_cast<std::uint32_t>(lists.far_cluster.size());
@@ -167,7 +169,11 @@ void FastOperator::store_block(Index b, const CoveringLists& lists) {
   near_start[rows] = near;
   far_start[rows] = far;
   std::copy(lists.near_col.begin(), lists.near_col.end(), blk.near_col());
-  std::copy(lists.near_val.begin(), lists.near_val.end(), blk.near_val());
+  if (options_.single_precision_near)
+    std::transform(lists.near_val.begin(), lists.near_val.end(), blk.near_val_single(),
+                   [](double x) { return static_cast<float>(x); });
+  else
+    std::copy(lists.near_val.begin(), lists.near_val.end(), blk.near_val());
   std::copy(lists.far_cluster.begin(), lists.far_cluster.end(), blk.far_cluster());
 }
 
@@ -192,7 +198,9 @@ FastOperator::RowLists FastOperator::row_lists(std::size_t r) const {
   const std::uint32_t* near_start = blk.near_start();
   const std::uint32_t* far_start = blk.far_start();
   const std::uint32_t near = near_start[k], far = far_start[k];
-  return {blk.near_col() + near,  blk.near_val() + near, near_start[k + 1] - near,
+  const bool single = blk.value_bytes == sizeof(float);
+  return {blk.near_col() + near, single ? nullptr : blk.near_val() + near, single ? blk.near_val_single() + near : nullptr,
+          near_start[k + 1] - near,
           blk.far_cluster() + far, far_start[k + 1] - far, blk.far_first + far};
 }
 

@@ -34,6 +34,17 @@ inline void add_far_terms(const Coef* coef, const double* m, std::size_t T, doub
   }
 }
 
+// The near field of a row (43), first sum, for C columns: entries stored double or float (widened
+// exactly), each column's sum in the order of the list.
+template <int C, class Value>
+void add_near_terms(const Value* val, const Index* col, std::int64_t count, const double* v, double* near) {
+  for (std::int64_t j = 0; j < count; ++j) {
+    const double k = static_cast<double>(val[j]);
+    const double* vj = v + static_cast<std::size_t>(col[j]) * C;
+    for (int c = 0; c < C; ++c) near[c] += k * vj[c];
+  }
+}
+
 }  // namespace
 
 // Row i (held) of the fast product (43) for C vectors, from their cluster moments: near field plus
@@ -55,11 +66,10 @@ void FastOperator::apply_row_columns(Index i, const double* v, const double* mom
     for (int c = 0; c < C; ++c) local[c] *= rho;
   }
   const RowLists row = row_lists(r);
-  for (std::int64_t j = 0; j < row.near_count; ++j) {
-    const double k = row.near_val[j];
-    const double* vj = v + static_cast<std::size_t>(row.near_col[j]) * C;
-    for (int c = 0; c < C; ++c) near[c] += k * vj[c];
-  }
+  if (row.near_val_single)
+    add_near_terms<C>(row.near_val_single, row.near_col, row.near_count, v, near);
+  else
+    add_near_terms<C>(row.near_val, row.near_col, row.near_count, v, near);
   const std::int64_t first = row.far_first, count = row.far_count;
   const Index* clusters = row.far_cluster;
   const far_field_batch::Kernels& kernels = far_field_batch::kernels();

@@ -87,6 +87,8 @@ std::shared_ptr<const geometry::Occluders> scene_occluders(const geometry::Clust
 
 bool single_precision_far_field(Visibility) { return true; }
 
+bool single_precision_near_field(Visibility visibility) { return visibility == Visibility::occluded; }
+
 std::unique_ptr<RadiosityOperator> make_operator(const Collocation& collocation, const OperatorOptions& options,
                                                  Visibility visibility, const SetupProgress& progress,
                                                  const RowRange& rows, int probe_samples) {
@@ -110,6 +112,7 @@ std::unique_ptr<RadiosityOperator> make_operator(const Collocation& collocation,
       fast.progress = progress;
       fast.occluders = occluders;
       fast.single_precision_coefficients = single_precision_far_field(visibility);
+      fast.single_precision_near = single_precision_near_field(visibility);
       fast.expected_products = options.expected_products;
       fast.rows = rows;
       fast.probe_samples = probe_samples;

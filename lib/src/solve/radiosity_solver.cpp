@@ -180,6 +180,7 @@ void RadiositySolver::choose_by_probes(const Collocation& rows, OperatorOptions&
   base.occluders = scene_occluders(rows.tree());
   base.probe_samples = kSelfCheckSamples;
   base.single_precision_coefficients = single_precision_far_field(Visibility::occluded);  // as make() will
+  base.single_precision_near = single_precision_near_field(Visibility::occluded);
   struct Trial {
     OperatorOptions options;
     FastSelfCheck check;

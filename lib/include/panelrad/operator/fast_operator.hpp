@@ -90,6 +90,12 @@ struct FastOptions : ClusteringParameters {
   /// rounding of 2^-24 ~ 6e-8 relative per coefficient (the sums stay double), which self_check
   /// measures with the Taylor remainder. Coefficients recomputed per product stay double.
   bool single_precision_coefficients = false;
+  /// Store the near-field entries rho_i/pi Int G V (43) rounded to single precision (8 bytes an
+  /// entry with its element id instead of 12): a covering with V holds several times the near
+  /// entries of a convex surface (the elements along every shadow's edge are integrated one by
+  /// one), which then dominate the memory and a product's reading. The rounding, 2^-24 ~ 6e-8
+  /// relative per entry (the sums stay double), is included in what self_check measures.
+  bool single_precision_near = false;
   /// A probe of these parameters: when > 0, only the rows that self_check(probe_samples) samples
   /// are covered and integrated (the others are held empty, their entries of a product 0), so
   /// that self_check(probe_samples) measures what it would measure on the whole operator, bit for
@@ -242,25 +248,28 @@ class FastOperator final : public RadiosityOperator {
   // one (where its stored coefficients start). Each block is built whole by one thread and kept:
   // the lists are never concatenated, so they are written once and held once, in one piece of
   // that thread's chunks (list_chunks_): near_val, near_col, far_cluster, near_start, far_start.
+  // near_val holds doubles, or floats with single_precision_near (value_bytes 8 or 4).
   struct RowBlock {
     std::int64_t far_first = 0;
-    std::uint32_t rows = 0, near = 0, far = 0;
+    std::uint32_t rows = 0, near = 0, far = 0, value_bytes = sizeof(double);
     std::byte* lists = nullptr;
-    static std::size_t list_bytes(std::size_t rows, std::size_t near, std::size_t far) {
-      return near * (sizeof(double) + sizeof(geometry::Index)) + far * sizeof(geometry::Index) +
+    static std::size_t list_bytes(std::size_t rows, std::size_t near, std::size_t far, std::size_t value_bytes) {
+      return near * (value_bytes + sizeof(geometry::Index)) + far * sizeof(geometry::Index) +
              2 * (rows + 1) * sizeof(std::uint32_t);
     }
     double* near_val() const { return reinterpret_cast<double*>(lists); }
-    geometry::Index* near_col() const { return reinterpret_cast<geometry::Index*>(near_val() + near); }
+    float* near_val_single() const { return reinterpret_cast<float*>(lists); }
+    geometry::Index* near_col() const { return reinterpret_cast<geometry::Index*>(lists + near * value_bytes); }
     geometry::Index* far_cluster() const { return near_col() + near; }
     std::uint32_t* near_start() const { return reinterpret_cast<std::uint32_t*>(far_cluster() + far); }
     std::uint32_t* far_start() const { return near_start() + rows + 1; }
-    std::size_t bytes() const { return sizeof(RowBlock) + list_bytes(rows, near, far); }
+    std::size_t bytes() const { return sizeof(RowBlock) + list_bytes(rows, near, far, value_bytes); }
   };
-  // Row r's lists (r counted from the first row held).
+  // Row r's lists (r counted from the first row held): near_val or near_val_single, by the block.
   struct RowLists {
     const geometry::Index* near_col;
     const double* near_val;
+    const float* near_val_single;
     std::int64_t near_count;
     const geometry::Index* far_cluster;
     std::int64_t far_count;

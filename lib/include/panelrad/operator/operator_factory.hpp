@@ -84,6 +84,14 @@ std::shared_ptr<const geometry::Occluders> scene_occluders(const geometry::Clust
 /// self-check errors of float and double agree to 3 digits on the cube at n = 49,152).
 bool single_precision_far_field(Visibility visibility);
 
+/// Whether make_operator's fast operator stores its near-field entries in single precision
+/// (FastOptions::single_precision_near): with V only. A covering with V integrates the elements
+/// along every shadow's edge one by one, so its near entries dominate the memory and a product's
+/// reading (bench/visibility: 3,985 a row on the Cornell box at n = 245,760, 9 GB of the 13 GB
+/// held in double); in single precision they take a third less, at a rounding of 6e-8 per entry
+/// that self_check includes. Without V the near field stays double: the convex path unchanged.
+bool single_precision_near_field(Visibility visibility);
+
 /// The operator with rows weighted by the collocation's reflectivity (33):
 /// (K_n v)_i = rho(P_i)/pi Int_S v G(P_i, Q) V(P_i, Q) dS_Q. options.method automatic and
 /// visibility automatic are std::invalid_argument (the solver resolves them), and so is

@@ -1,0 +1,79 @@
+#pragma once
+// View factors between groups of surfaces: F_IJ, the fraction of the radiation leaving surface I
+// diffusely that reaches surface J directly (gray diffuse exchange),
+//   F_IJ = (1 / A_I) Int_I (1/pi) Int_J G(P, Q) V(P, Q) dS_Q dS_P,
+// with G and V those of equation (1). The inner integral is the operator H of (33) without rho,
+// (H v)_i = (1/pi) Int_S v(Q) G(P_i, Q) V(P_i, Q) dS_Q, and the outer one its collocation (22):
+//   F_IJ = (1 / A_I) sum_{i in I} A_i (H chi_J)_i,   A_I = sum_{i in I} A_i,
+// chi_J the indicator of J's elements. Every group's indicator goes through H in block products
+// (RadiosityOperator::apply_block: the fast operator's lists and far field read once for a block
+// of columns), never as an n x n matrix. The part of P_i's hemisphere that no surface covers is
+// 1 - (H 1)_i; over group I it is 1 - sum_J F_IJ: in an open scene the sky view factor, in an
+// enclosed one the closure defect of the discretization (the exact factors close to 1).
+#include <panelrad/scene/scene.hpp>
+#include <panelrad/solve/radiosity_solver.hpp>
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+namespace panelrad {
+
+/// A partition of the scene's input facets into named groups (the surfaces of F_IJ).
+struct SurfaceGroups {
+  std::vector<std::string> names;        ///< one per group, distinct and non-empty
+  std::vector<geometry::Index> of_facet;  ///< the group of each input facet, in [0, names.size())
+};
+
+/// Every input facet its own group, named "facet K" (K its index in the file's order).
+SurfaceGroups groups_by_facet(const Scene& scene);
+/// The facets of one material (OBJ usemtl) one group, named by it, in the order of first use; a
+/// facet written before any usemtl is in the group "default". std::invalid_argument when the
+/// scene has no materials (an OFF, or an OBJ read as geometry only).
+SurfaceGroups groups_by_material(const Scene& scene);
+/// What is wrong with `groups` for `scene` ("" when nothing): a facet count that differs, a
+/// group index out of range, a name empty or given twice, a group with no facet.
+std::string groups_problem(const Scene& scene, const SurfaceGroups& groups);
+
+struct ViewFactorOptions {
+  /// The discretization and the operator, as a solve takes them (level or max_elements, method,
+  /// accuracy, visibility, progress). Reflectivity plays no part: H carries none.
+  SolveOptions solve;
+  /// Also compute the factors one level coarser (when the level is at least 1) and report
+  /// |F(level) - F(level - 1)| as the discretization's error estimate: at first order in h it is
+  /// the error of the finer level, at higher order an overestimate.
+  bool estimate_error = true;
+  /// Group indicators per block product.
+  int block_columns = 8;
+};
+
+struct ViewFactors {
+  std::vector<std::string> names;
+  Eigen::VectorXd area;       ///< A_I
+  Eigen::MatrixXd F;          ///< F(I, J) = F_IJ
+  /// 1 - sum_J F_IJ: the sky view factor of I in an open scene, the closure defect in an
+  /// enclosed one (Scene::enclosed).
+  Eigen::VectorXd uncovered;
+  bool enclosed = true;
+  /// |F(level) - F(level - 1)| and the same for `uncovered` (estimate_error at level >= 1), else
+  /// empty.
+  Eigen::MatrixXd error;
+  Eigen::VectorXd uncovered_error;
+  /// max over pairs of |A_I F_IJ - A_J F_JI| / max(A_I F_IJ, A_J F_JI) (pairs where both are 0
+  /// left out), and the pair (I, J) where it is reached (-1, -1 when no pair exchanges).
+  double reciprocity_defect = 0;
+  geometry::Index reciprocity_I = -1, reciprocity_J = -1;
+  int level = 0;
+  geometry::Index n = 0;
+  std::string method;               ///< describe_parameters of the operator
+  double self_check_error = -1;     ///< the fast operator's relative product error; -1: dense
+  double seconds = 0;               ///< setup and products, both levels
+};
+
+/// The view factors between `groups` of `scene` (groups_problem must be ""; std::invalid_argument
+/// naming the problem otherwise). The errors of the solver's setup pass through (ResourceError,
+/// std::invalid_argument for bad options). One process (options.solve.communicator null).
+ViewFactors compute_view_factors(const Scene& scene, const SurfaceGroups& groups, const ViewFactorOptions& options = {});
+
+}  // namespace panelrad

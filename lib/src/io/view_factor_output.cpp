@@ -1,0 +1,93 @@
+// View factors as CSV and .npy files, written as one set (view_factor_output.hpp).
+#include <panelrad/io/view_factor_output.hpp>
+
+#include <panelrad/io/text_output.hpp>
+
+#include <bit>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <sstream>
+
+namespace panelrad {
+
+namespace {
+
+/// A CSV field: quoted (with inner quotes doubled) when it holds a comma, a quote or a line break,
+/// or starts or ends with a space.
+std::string csv_field(const std::string& s) {
+  const bool quote = s.find_first_of(",\"\r\n") != std::string::npos || (!s.empty() && (s.front() == ' ' || s.back() == ' '));
+  if (!quote) return s;
+  std::string out = "\"";
+  for (const char c : s) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  return out + "\"";
+}
+
+std::string number(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.17g", x);
+  return buffer;
+}
+
+}  // namespace
+
+std::vector<std::string> view_factor_paths(const std::string& prefix, bool with_error) {
+  std::vector<std::string> paths{prefix + ".csv"};
+  if (with_error) paths.push_back(prefix + "_error.csv");
+  paths.push_back(prefix + ".npy");
+  return paths;
+}
+
+std::string view_factor_csv(const ViewFactors& v, const Eigen::MatrixXd& values, const Eigen::VectorXd& uncovered) {
+  std::ostringstream out;
+  out << "group,area";
+  for (const std::string& name : v.names) out << ',' << csv_field(name);
+  out << ',' << (v.enclosed ? "closure_defect" : "sky") << '\n';
+  for (std::size_t I = 0; I < v.names.size(); ++I) {
+    const auto i = static_cast<Eigen::Index>(I);
+    out << csv_field(v.names[I]) << ',' << number(v.area[i]);
+    for (Eigen::Index J = 0; J < values.cols(); ++J) out << ',' << number(values(i, J));
+    out << ',' << number(uncovered[i]) << '\n';
+  }
+  return out.str();
+}
+
+std::string npy_bytes(const Eigen::MatrixXd& m) {
+  static_assert(std::endian::native == std::endian::little, "the .npy writer assumes a little-endian host ('<f8')");
+  std::string header = "{'descr': '<f8', 'fortran_order': False, 'shape': (" + std::to_string(m.rows()) + ", " +
+                       std::to_string(m.cols()) + "), }";
+  // Magic (6) + version (2) + header length (2) + header, padded with spaces and ended by a
+  // newline to a multiple of 64 bytes.
+  const std::size_t unpadded = 10 + header.size() + 1;
+  header.append((64 - unpadded % 64) % 64, ' ');
+  header += '\n';
+  std::string out("\x93NUMPY\x01\x00", 8);
+  const auto length = static_cast<std::uint16_t>(header.size());
+  out += static_cast<char>(length & 0xff);
+  out += static_cast<char>(length >> 8);
+  out += header;
+  for (Eigen::Index i = 0; i < m.rows(); ++i)
+    for (Eigen::Index j = 0; j < m.cols(); ++j) {
+      const double x = m(i, j);
+      char bytes[sizeof(double)];
+      std::memcpy(bytes, &x, sizeof x);
+      out.append(bytes, sizeof bytes);
+    }
+  return out;
+}
+
+std::vector<std::string> write_view_factors(const ViewFactors& v, const std::string& prefix) {
+  const bool with_error = v.error.size() > 0;
+  const std::vector<std::string> paths = view_factor_paths(prefix, with_error);
+  OutputSet set;
+  set.add(paths[0], view_factor_csv(v, v.F, v.uncovered));
+  if (with_error) set.add(paths[1], view_factor_csv(v, v.error, v.uncovered_error));
+  set.add(paths.back(), npy_bytes(v.F));
+  set.commit();
+  return paths;
+}
+
+}  // namespace panelrad

@@ -1,0 +1,157 @@
+// View factors between groups of surfaces by block products of H (view_factors.hpp).
+#include <panelrad/viewfactors/view_factors.hpp>
+
+#include <panelrad/operator/auto_parameters.hpp>
+#include <panelrad/support/resources.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <stdexcept>
+
+namespace panelrad {
+
+using geometry::Index;
+
+namespace {
+
+/// The factors of one level: F(I, J) and A_I, from the solver's H.
+struct LevelFactors {
+  Eigen::MatrixXd F;
+  Eigen::VectorXd area;
+  int level = 0;
+  Index n = 0;
+  std::string method;
+  double self_check_error = -1;
+};
+
+LevelFactors factors_at(const Scene& scene, const SurfaceGroups& groups, const SolveOptions& solve, int block_columns) {
+  const RadiositySolver solver(scene, solve);
+  const Collocation& col = solver.collocation();
+  const Index n = col.size();
+  const Index G = static_cast<Index>(groups.names.size());
+  LevelFactors out;
+  out.level = solver.level();
+  out.n = n;
+  out.method = describe_parameters(solver.parameters());
+  if (solver.self_check()) out.self_check_error = solver.self_check()->relative_error;
+  std::vector<Index> group(static_cast<std::size_t>(n));
+  Eigen::VectorXd a(n);
+  out.area = Eigen::VectorXd::Zero(G);
+  for (Index i = 0; i < n; ++i) {
+    group[static_cast<std::size_t>(i)] = groups.of_facet[static_cast<std::size_t>(col.facet(i))];
+    a[i] = col.tree().elements()[static_cast<std::size_t>(i)].area;
+    out.area[group[static_cast<std::size_t>(i)]] += a[i];
+  }
+  out.F = Eigen::MatrixXd::Zero(G, G);
+  Eigen::MatrixXd X, Y;
+  for (Index first = 0; first < G; first += block_columns) {
+    const Index m = std::min<Index>(block_columns, G - first);
+    X = Eigen::MatrixXd::Zero(n, m);
+    for (Index i = 0; i < n; ++i) {
+      const Index J = group[static_cast<std::size_t>(i)];
+      if (J >= first && J < first + m) X(i, J - first) = 1;
+    }
+    solver.op().apply_block(X, Y);
+    // Sums in element order, one column at a time: the same for any thread count.
+    for (Index c = 0; c < m; ++c)
+      for (Index i = 0; i < n; ++i) out.F(group[static_cast<std::size_t>(i)], first + c) += a[i] * Y(i, c);
+  }
+  for (Index I = 0; I < G; ++I) out.F.row(I) /= out.area[I];
+  return out;
+}
+
+}  // namespace
+
+SurfaceGroups groups_by_facet(const Scene& scene) {
+  SurfaceGroups g;
+  for (Index f = 0; f < scene.num_facets(); ++f) {
+    g.names.push_back("facet " + std::to_string(f));
+    g.of_facet.push_back(f);
+  }
+  return g;
+}
+
+SurfaceGroups groups_by_material(const Scene& scene) {
+  const std::vector<std::string>& material = scene.facet_material();
+  if (material.empty())
+    throw std::invalid_argument("groups by material: the scene has no materials (an OBJ's usemtl); group by facet instead");
+  SurfaceGroups g;
+  std::map<std::string, Index> index;
+  for (const std::string& m : material) {
+    const std::string name = m.empty() ? "default" : m;
+    const auto [it, added] = index.try_emplace(name, static_cast<Index>(g.names.size()));
+    if (added) g.names.push_back(name);
+    g.of_facet.push_back(it->second);
+  }
+  return g;
+}
+
+std::string groups_problem(const Scene& scene, const SurfaceGroups& groups) {
+  if (static_cast<Index>(groups.of_facet.size()) != scene.num_facets())
+    return "groups: " + std::to_string(groups.of_facet.size()) + " facets given a group, the scene has " +
+           std::to_string(scene.num_facets());
+  if (groups.names.empty()) return "groups: none given";
+  const Index G = static_cast<Index>(groups.names.size());
+  std::set<std::string> seen;
+  for (const std::string& name : groups.names) {
+    if (name.empty()) return "groups: a group has an empty name";
+    if (!seen.insert(name).second) return "groups: the name '" + name + "' is given twice";
+  }
+  std::vector<char> used(static_cast<std::size_t>(G), 0);
+  for (std::size_t f = 0; f < groups.of_facet.size(); ++f) {
+    const Index g = groups.of_facet[f];
+    if (g < 0 || g >= G)
+      return "groups: facet " + std::to_string(f) + " is in group " + std::to_string(g) + ", not in [0, " +
+             std::to_string(G) + ")";
+    used[static_cast<std::size_t>(g)] = 1;
+  }
+  for (Index g = 0; g < G; ++g)
+    if (!used[static_cast<std::size_t>(g)]) return "groups: '" + groups.names[static_cast<std::size_t>(g)] + "' has no facet";
+  return "";
+}
+
+ViewFactors compute_view_factors(const Scene& scene, const SurfaceGroups& groups, const ViewFactorOptions& options) {
+  if (const std::string why = groups_problem(scene, groups); !why.empty()) throw std::invalid_argument(why);
+  if (options.block_columns < 1)
+    throw std::invalid_argument("view factors: block_columns " + std::to_string(options.block_columns) + " is not >= 1");
+  if (options.solve.communicator)
+    throw std::invalid_argument("view factors: one process only (the solver's communicator is set)");
+  Stopwatch clock;
+  const LevelFactors fine = factors_at(scene, groups, options.solve, options.block_columns);
+  ViewFactors v;
+  v.names = groups.names;
+  v.area = fine.area;
+  v.F = fine.F;
+  v.enclosed = scene.enclosed();
+  v.uncovered = Eigen::VectorXd::Ones(fine.F.rows()) - fine.F.rowwise().sum();
+  v.level = fine.level;
+  v.n = fine.n;
+  v.method = fine.method;
+  v.self_check_error = fine.self_check_error;
+  if (options.estimate_error && fine.level >= 1) {
+    SolveOptions coarser = options.solve;
+    coarser.level = fine.level - 1;
+    const LevelFactors c = factors_at(scene, groups, coarser, options.block_columns);
+    v.error = (fine.F - c.F).cwiseAbs();
+    v.uncovered_error = (v.uncovered - (Eigen::VectorXd::Ones(c.F.rows()) - c.F.rowwise().sum())).cwiseAbs();
+  }
+  const Index G = static_cast<Index>(v.names.size());
+  for (Index I = 0; I < G; ++I)
+    for (Index J = I + 1; J < G; ++J) {
+      const double a = v.area[I] * v.F(I, J), b = v.area[J] * v.F(J, I);
+      const double larger = std::max(std::abs(a), std::abs(b));
+      if (!(larger > 0)) continue;
+      const double defect = std::abs(a - b) / larger;
+      if (defect > v.reciprocity_defect || v.reciprocity_I < 0) {
+        v.reciprocity_defect = defect;
+        v.reciprocity_I = I;
+        v.reciprocity_J = J;
+      }
+    }
+  v.seconds = clock.seconds();
+  return v;
+}
+
+}  // namespace panelrad

@@ -1,0 +1,138 @@
+// `panelrad viewfactors`: the view factors of a scene's groups end to end: the unit cube's faces
+// against their closed forms (Howell C-11, C-14), groups by material from an OBJ's usemtl, the
+// CSV's layout (names as header, area, closure column), the .npy read back bit for bit, exit
+// statuses (1 invalid input, nothing written; 2 usage error).
+#include "cli_run.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+using panelrad::testing::CliRun;
+CliRun run(const std::string& args, const std::string& redirect = "2>&1") {
+  return panelrad::testing::run_cli(args, redirect);
+}
+
+std::vector<std::vector<std::string>> read_csv(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::vector<std::string>> rows;
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> row;
+    std::stringstream s(line);
+    for (std::string field; std::getline(s, field, ',');) row.push_back(field);
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+class CliViewFactors : public panelrad::testing::CliDirectoryTest {
+ protected:
+  CliViewFactors() : CliDirectoryTest("cli_viewfactors") {}
+  // The unit cube seen from inside as an OBJ, faces x=0, x=1, y=0, y=1, z=0, z=1 with the given
+  // materials (and an MTL giving each a Kd).
+  void write_cube(const std::vector<std::string>& materials) const {
+    std::ostringstream os, mtl;
+    os << "mtllib cube.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n";
+    const char* faces[6] = {"1 4 8 5", "2 6 7 3", "1 5 6 2", "4 3 7 8", "1 2 3 4", "5 8 7 6"};  // inner normals
+    for (int f = 0; f < 6; ++f) os << "usemtl " << materials[static_cast<std::size_t>(f)] << "\nf " << faces[f] << "\n";
+    std::set<std::string> defined;
+    for (const std::string& m : materials)
+      if (defined.insert(m).second) mtl << "newmtl " << m << "\nKd 0.5 0.5 0.5\n";
+    write("cube.obj", os.str());
+    write("cube.mtl", mtl.str());
+  }
+};
+
+// Each face of the unit cube a group: the opposite face 0.199825, each adjacent one 0.200044
+// (closed forms), within the written error estimate; the closure column, the header, the .npy.
+TEST_F(CliViewFactors, CubeFacesMatchTheClosedForms) {
+  write_cube({"a", "b", "c", "d", "e", "f"});
+  const CliRun r = run("viewfactors " + path("cube.obj") + " --levels 3 --out " + path("cube") + " --quiet");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("groups: 6 (facet)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("closure: the scene is enclosed"), std::string::npos) << r.output;
+  const auto F = read_csv(path("cube.csv")), E = read_csv(path("cube_error.csv"));
+  ASSERT_EQ(F.size(), 7u);
+  ASSERT_EQ(F[0].size(), 9u);
+  EXPECT_EQ(F[0][0], "group");
+  EXPECT_EQ(F[0][2], "facet 0");
+  EXPECT_EQ(F[0][8], "closure_defect");
+  const double opposite = 0.19982489569838732, adjacent = 0.20004377607540316;
+  for (int I = 0; I < 6; ++I) {
+    EXPECT_EQ(F[static_cast<std::size_t>(I) + 1][0], "facet " + std::to_string(I));
+    EXPECT_NEAR(std::stod(F[static_cast<std::size_t>(I) + 1][1]), 1.0, 1e-15);
+    for (int J = 0; J < 6; ++J) {
+      const double f = std::stod(F[static_cast<std::size_t>(I) + 1][static_cast<std::size_t>(J) + 2]);
+      const double e = std::stod(E[static_cast<std::size_t>(I) + 1][static_cast<std::size_t>(J) + 2]);
+      const double exact = I == J ? 0 : I / 2 == J / 2 ? opposite : adjacent;
+      EXPECT_LE(std::abs(f - exact), e + 1e-12) << I << " " << J;
+    }
+  }
+  // The .npy: the header, then the 36 doubles of the CSV's matrix, bit for bit.
+  std::ifstream npy(path("cube.npy"), std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(npy)), std::istreambuf_iterator<char>());
+  ASSERT_GE(bytes.size(), 10u);
+  EXPECT_EQ(bytes.substr(0, 8), std::string("\x93NUMPY\x01\x00", 8));
+  const std::size_t header = static_cast<unsigned char>(bytes[8]) | static_cast<std::size_t>(static_cast<unsigned char>(bytes[9])) << 8;
+  EXPECT_EQ((10 + header) % 64, 0u);
+  EXPECT_NE(bytes.find("'shape': (6, 6)"), std::string::npos);
+  ASSERT_EQ(bytes.size(), 10 + header + 36 * sizeof(double));
+  for (int k = 0; k < 36; ++k) {
+    double x;
+    std::memcpy(&x, bytes.data() + 10 + header + static_cast<std::size_t>(k) * sizeof(double), sizeof x);
+    EXPECT_EQ(x, std::stod(F[static_cast<std::size_t>(k / 6) + 1][static_cast<std::size_t>(k % 6) + 2])) << k;
+  }
+}
+
+// Groups by material: the floor and the ceiling one group each, the four walls one; names from
+// usemtl in the order of first use. Rows of a closed scene sum to 1 up to the closure column.
+TEST_F(CliViewFactors, GroupsByMaterial) {
+  write_cube({"wall", "wall", "wall", "wall", "floor", "ceiling"});
+  const CliRun r = run("viewfactors " + path("cube.obj") + " --groups material --levels 2 --no-estimate --out " +
+                       path("m") + " --quiet");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_FALSE(fs::exists(path("m_error.csv")));
+  const auto F = read_csv(path("m.csv"));
+  ASSERT_EQ(F.size(), 4u);
+  EXPECT_EQ(F[0], (std::vector<std::string>{"group", "area", "wall", "floor", "ceiling", "closure_defect"}));
+  EXPECT_NEAR(std::stod(F[2][1]), 1.0, 1e-15);   // the floor's area
+  EXPECT_NEAR(std::stod(F[1][1]), 4.0, 1e-15);   // the walls'
+  EXPECT_NEAR(std::stod(F[2][4]), 0.19982489569838732, 5e-3);  // floor -> ceiling
+  for (std::size_t I = 1; I <= 3; ++I) {
+    double sum = 0;
+    for (std::size_t J = 2; J <= 5; ++J) sum += std::stod(F[I][J]);
+    EXPECT_NEAR(sum, 1.0, 1e-12) << I;  // the closure column completes each row exactly
+  }
+}
+
+// Bad input: nothing written, exit 1 with the reason; usage errors exit 2.
+TEST_F(CliViewFactors, RefusalsWriteNothing) {
+  write("broken.obj", "v 0 0 0\nv 1 0 0\nf 1 2 3\n");
+  CliRun r = run("viewfactors " + path("broken.obj") + " --out " + path("x") + " --quiet");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_EQ(files(), 1u);  // the input alone
+  write_cube({"a", "b", "c", "d", "e", "f"});
+  fs::remove(path("cube.mtl"));
+  r = run("viewfactors " + path("cube.obj") + " --groups material --out " + path("y") + " --quiet");
+  EXPECT_EQ(r.status, 1) << r.output;  // the materials cannot be read
+  EXPECT_FALSE(fs::exists(path("y.csv")));
+  r = run("viewfactors " + path("cube.obj") + " --groups object");
+  EXPECT_EQ(r.status, 2) << r.output;
+  r = run("viewfactors");
+  EXPECT_EQ(r.status, 2) << r.output;
+  r = run("viewfactors " + path("cube.obj") + " --levels 1 --max-elements 10");
+  EXPECT_EQ(r.status, 2) << r.output;
+}
+
+}  // namespace
