@@ -38,19 +38,22 @@ from ._panelrad import (
     paper_cube,
     set_threads,
     solve_scene,
+    view_factors,
+    ViewFactors,
     write_outputs,
 )
 
 _CLASSES = ("ArgumentError", "ArgumentTypeError", "ChannelError", "ChannelSolution", "EnergyBalanceError", "Error", "MeshError", "Operator",
             "ResourceError", "Scene", "SceneFileError", "Solution", "SolveResult", "Solver", "SolverError",
-            "TextFileError")
-_FUNCTIONS = ("load_scene", "max_threads", "paper_cube", "set_threads", "solve_scene", "write_outputs")
+            "TextFileError", "ViewFactors")
+_FUNCTIONS = ("load_scene", "max_threads", "paper_cube", "set_threads", "solve_scene", "view_factors", "write_outputs")
 # The methods that take arguments (properties take none); __init__ is each class's constructor.
 _METHODS = {
     "Scene": ("__init__", "set_reflectivity", "set_emission", "reflectivity", "emission"),
     "Solver": ("__init__", "solve", "max_error", "channel_values", "irradiance"),
     "Operator": ("matvec", "matmat", "__matmul__"),
     "Solution": ("__getitem__",),
+    "ViewFactors": ("write",),
 }
 
 # A parameter of a pybind11 signature line: its name, before ": type" (and "= default").
@@ -143,11 +146,13 @@ __all__ = [
     "Solver",
     "SolverError",
     "TextFileError",
+    "ViewFactors",
     "__version__",
     "load_scene",
     "max_threads",
     "paper_cube",
     "set_threads",
     "solve_scene",
+    "view_factors",
     "write_outputs",
 ]

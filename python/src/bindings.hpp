@@ -11,5 +11,6 @@ void bind_scene(py::module_& m);      // scene_binding.cpp: Scene, load_scene, p
 void bind_operator(py::module_& m);   // operator_binding.cpp: Operator (H or K_n as a LinearOperator)
 void bind_solver(py::module_& m);     // solver_binding.cpp: Solver, SolveResult
 void bind_solution(py::module_& m);   // solution_binding.cpp: solve_scene, Solution, write_outputs
+void bind_view_factors(py::module_& m);  // viewfactors_binding.cpp: view_factors, ViewFactors
 
 }  // namespace panelrad::python

@@ -87,9 +87,9 @@ bool single_precision_far_field(Visibility visibility);
 /// Whether make_operator's fast operator stores its near-field entries in single precision
 /// (FastOptions::single_precision_near): with V only. A covering with V integrates the elements
 /// along every shadow's edge one by one, so its near entries dominate the memory and a product's
-/// reading (bench/visibility: 3,985 a row on the Cornell box at n = 245,760, 9 GB of the 13 GB
-/// held in double); in single precision they take a third less, at a rounding of 6e-8 per entry
-/// that self_check includes. Without V the near field stays double: the convex path unchanged.
+/// reading (bench/visibility on the Cornell box at n = 245,760: 4,014 a row, 11.8 of the 12.8 GB
+/// held in double; 8.9 GB held in all with them in single precision), at a rounding of 6e-8 per
+/// entry that self_check includes. Without V the near field stays double: the convex path unchanged.
 bool single_precision_near_field(Visibility visibility);
 
 /// The operator with rows weighted by the collocation's reflectivity (33):

@@ -1,0 +1,140 @@
+// panelrad.view_factors: the view factors between groups of a scene's surfaces (C++
+// compute_view_factors, with the GIL released), as numpy arrays; ViewFactors.write.
+#include "bindings.hpp"
+#include "options.hpp"
+#include "scene_access.hpp"
+
+#include <panelrad/io/view_factor_output.hpp>
+#include <panelrad/viewfactors/view_factors.hpp>
+
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace panelrad::python {
+
+namespace {
+
+/// groups: "facet", "material", or a sequence of one name per input facet (the groups in the order
+/// of their first facet).
+SurfaceGroups surface_groups(const Scene& scene, py::handle groups) {
+  if (py::isinstance<py::str>(groups)) {
+    const std::string how = groups.cast<std::string>();
+    if (how == "facet") return groups_by_facet(scene);
+    if (how == "material") return groups_by_material(scene);
+    throw std::invalid_argument("groups: '" + how + "' is not 'facet', 'material' or a name per facet");
+  }
+  if (!py::isinstance<py::sequence>(groups))
+    throw py::type_error("groups: expected 'facet', 'material' or a sequence of one name per facet");
+  SurfaceGroups g;
+  std::map<std::string, geometry::Index> index;
+  for (const py::handle item : groups.cast<py::sequence>()) {
+    if (!py::isinstance<py::str>(item)) throw py::type_error("groups: every entry must be a str (a group's name)");
+    const auto [it, added] = index.try_emplace(item.cast<std::string>(), static_cast<geometry::Index>(g.names.size()));
+    if (added) g.names.push_back(it->first);
+    g.of_facet.push_back(it->second);
+  }
+  return g;
+}
+
+}  // namespace
+
+void bind_view_factors(py::module_& m) {
+  py::class_<ViewFactors, std::shared_ptr<ViewFactors>>(m, "ViewFactors", R"doc(
+The view factors between groups of a scene's surfaces (view_factors): F[I, J] is the fraction of
+the radiation leaving group I diffusely that reaches group J directly.
+)doc")
+      .def_property_readonly("names", [](const ViewFactors& v) { return v.names; }, "The groups, in the order of F's rows.")
+      .def_property_readonly("area", [](const ViewFactors& v) { return v.area; }, "A_I, the groups' areas.")
+      .def_property_readonly("F", [](const ViewFactors& v) { return v.F; }, "The matrix F[I, J].")
+      .def_property_readonly("uncovered", [](const ViewFactors& v) { return v.uncovered; },
+                             "1 - sum_J F[I, J]: the sky view factor (open scene) or the closure defect (enclosed).")
+      .def_property_readonly("enclosed", [](const ViewFactors& v) { return v.enclosed; },
+                             "Whether the scene is enclosed: `uncovered` is then the closure defect.")
+      .def_property_readonly(
+          "error",
+          [](const ViewFactors& v) -> std::optional<Eigen::MatrixXd> {
+            if (v.error.size() == 0) return std::nullopt;
+            return v.error;
+          },
+          "|F(L) - F(L-1)|, the error estimate (None when not computed).")
+      .def_property_readonly(
+          "uncovered_error",
+          [](const ViewFactors& v) -> std::optional<Eigen::VectorXd> {
+            if (v.uncovered_error.size() == 0) return std::nullopt;
+            return v.uncovered_error;
+          },
+          "The same for `uncovered` (None when not computed).")
+      .def_property_readonly("reciprocity_defect", [](const ViewFactors& v) { return v.reciprocity_defect; },
+                             "max |A_I F_IJ - A_J F_JI| / max(A_I F_IJ, A_J F_JI) over the pairs that exchange.")
+      .def_property_readonly(
+          "reciprocity_pair",
+          [](const ViewFactors& v) -> std::optional<std::pair<std::string, std::string>> {
+            if (v.reciprocity_I < 0) return std::nullopt;
+            return std::make_pair(v.names[static_cast<std::size_t>(v.reciprocity_I)],
+                                  v.names[static_cast<std::size_t>(v.reciprocity_J)]);
+          },
+          "The pair (I, J) of the worst reciprocity defect (None when no pair exchanges).")
+      .def_property_readonly("level", [](const ViewFactors& v) { return v.level; })
+      .def_property_readonly("n", [](const ViewFactors& v) { return v.n; })
+      .def_property_readonly("method", [](const ViewFactors& v) { return v.method; })
+      .def_property_readonly(
+          "self_check_error",
+          [](const ViewFactors& v) -> std::optional<double> {
+            if (v.self_check_error < 0) return std::nullopt;
+            return v.self_check_error;
+          },
+          "The fast operator's measured relative product error (None: dense).")
+      .def_property_readonly("seconds", [](const ViewFactors& v) { return v.seconds; })
+      .def(
+          "write",
+          [](const ViewFactors& v, py::handle prefix) {
+            const std::string p = fspath(prefix);
+            py::gil_scoped_release release;
+            return write_view_factors(v, p);
+          },
+          py::arg("prefix"),
+          "Writes PREFIX.csv, PREFIX_error.csv (with the estimates) and PREFIX.npy, all or none; returns the paths.")
+      .def("__repr__", [](const ViewFactors& v) {
+        return "<panelrad.ViewFactors: " + std::to_string(v.names.size()) + " groups, level " + std::to_string(v.level) +
+               ", n " + std::to_string(v.n) + ", " + v.method + ">";
+      });
+
+  m.def(
+      "view_factors",
+      [](std::shared_ptr<Scene> scene, py::object groups, bool estimate_error, int block_columns, std::optional<int> level,
+         long max_elements, double accuracy, std::string method, std::optional<double> eta, std::optional<int> degree,
+         std::optional<std::string> near, std::optional<int> mu, std::string visibility, std::optional<int> threads,
+         py::object progress) {
+        if (!scene) throw py::type_error("scene: expected a panelrad.Scene, got None");
+        ViewFactorOptions o;
+        o.solve = make_solve_options(solver_arguments(level, max_elements, accuracy, std::move(method), eta, degree,
+                                                      std::move(near), mu, std::move(visibility), "auto", std::nullopt,
+                                                      1000, threads, std::move(progress)));
+        o.estimate_error = estimate_error;
+        o.block_columns = block_columns;
+        const SurfaceGroups g = surface_groups(*scene, groups);
+        py::gil_scoped_release release;
+        return std::make_shared<ViewFactors>(compute_view_factors(*scene, g, o));
+      },
+      py::arg("scene"), py::arg("groups") = "facet", py::kw_only(), py::arg("estimate_error") = true,
+      py::arg("block_columns") = 8, py::arg("level") = py::none(), py::arg("max_elements") = 20000,
+      py::arg("accuracy") = 0.05, py::arg("method") = "auto", py::arg("eta") = py::none(), py::arg("degree") = py::none(),
+      py::arg("near") = py::none(), py::arg("mu") = py::none(), py::arg("visibility") = "auto",
+      py::arg("threads") = py::none(), py::arg("progress") = py::none(), R"doc(
+The view factors between groups of the scene's surfaces: groups 'facet' (every input face),
+'material' (the faces of one OBJ material) or a sequence of one group name per input facet.
+F[I, J] = (1 / A_I) sum_{i in I} A_i (H chi_J)_i with the solver's operator H (the line of sight
+computed unless the scene is proven convex), every group's indicator in block products of
+block_columns columns. With estimate_error the factors are also computed one level coarser and
+|F(L) - F(L-1)| is the error estimate. The other keywords as Solver's. Returns a ViewFactors.
+)doc");
+}
+
+}  // namespace panelrad::python

@@ -1,0 +1,67 @@
+"""panelrad.view_factors: the cube's faces against their closed forms (Howell C-11 and C-14), a
+convex body inside a room (F_box,room = 1, reciprocity), groups named per facet, the files written,
+and bad arguments refused."""
+import numpy as np
+import pytest
+
+import panelrad
+from conftest import room_with_box
+
+OPPOSITE = 0.19982489569838732  # unit squares facing each other at distance 1
+ADJACENT = 0.20004377607540316  # unit squares at right angles sharing an edge
+
+
+def test_cube_faces_match_the_closed_forms():
+    vf = panelrad.view_factors(panelrad.paper_cube(), level=4)
+    assert vf.F.shape == (6, 6)
+    assert vf.names == [f"facet {k}" for k in range(6)]
+    assert vf.enclosed
+    np.testing.assert_allclose(vf.area, np.ones(6), atol=1e-14)
+    # Opposite faces: their centres are the farthest apart.
+    cube = panelrad.paper_cube()
+    centres = np.array([cube.vertices[cube.triangles[cube.facets == k]].reshape(-1, 3).mean(axis=0) for k in range(6)])
+    distance = np.linalg.norm(centres[:, None, :] - centres[None, :, :], axis=2)
+    exact = np.where(distance > 1.2, OPPOSITE, ADJACENT)
+    np.fill_diagonal(exact, 0.0)
+    assert vf.error is not None
+    assert np.all(np.abs(vf.F - exact) <= vf.error + 1e-12)
+    assert np.abs(vf.F - exact).max() < 2e-4  # 1.4e-4 at n = 3,072 (the paper's diagonals)
+    assert np.abs(vf.uncovered).max() <= vf.uncovered_error.max() + 1e-12
+
+
+def test_a_body_in_a_room_by_named_groups():
+    vertices, triangles, facets = room_with_box()
+    scene = panelrad.Scene(vertices, triangles, facets=facets)
+    names = ["room"] * 6 + ["box"] * 6
+    vf = panelrad.view_factors(scene, names, level=3)
+    assert vf.names == ["room", "box"]
+    assert vf.F[1, 1] == 0.0  # a convex body's faces do not see each other
+    assert vf.F[1, 0] == pytest.approx(1.0, abs=max(vf.error[1, 0], 1e-6))
+    area_box = 2 * (1.5 * 1 + 1.5 * 1 + 1 * 1)
+    assert vf.area[1] == pytest.approx(area_box, rel=1e-13)
+    assert vf.F[0, 1] == pytest.approx(area_box / vf.area[0], abs=vf.error[0, 1])
+    assert vf.reciprocity_pair == ("room", "box")
+
+
+def test_files_and_no_estimate(tmp_path):
+    vf = panelrad.view_factors(panelrad.paper_cube(), level=2, estimate_error=False, block_columns=2)
+    assert vf.error is None and vf.uncovered_error is None
+    paths = vf.write(tmp_path / "cube")
+    assert [p.split("/")[-1] for p in paths] == ["cube.csv", "cube.npy"]
+    np.testing.assert_array_equal(np.load(tmp_path / "cube.npy"), vf.F)
+    header = (tmp_path / "cube.csv").read_text().splitlines()[0]
+    assert header == "group,area," + ",".join(vf.names) + ",closure_defect"
+
+
+def test_bad_arguments():
+    cube = panelrad.paper_cube()
+    with pytest.raises(panelrad.ArgumentError, match="'object' is not"):
+        panelrad.view_factors(cube, "object")
+    with pytest.raises(panelrad.ArgumentError, match="no materials"):
+        panelrad.view_factors(cube, "material")
+    with pytest.raises(panelrad.ArgumentError, match="5 facets"):
+        panelrad.view_factors(cube, ["a"] * 5)
+    with pytest.raises(panelrad.ArgumentTypeError):
+        panelrad.view_factors(cube, [1, 2, 3, 4, 5, 6])
+    with pytest.raises(panelrad.ArgumentTypeError, match="did you mean 'level'"):
+        panelrad.view_factors(cube, levels=2)
