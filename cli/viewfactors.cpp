@@ -22,16 +22,19 @@ namespace panelrad::cli {
 namespace {
 
 const char* kViewFactorsUsage =
-    "usage: panelrad viewfactors SCENE [--groups facet|material] [--levels L | --max-elements N]\n"
+    "usage: panelrad viewfactors SCENE [--groups facet|object|material] [--levels L | --max-elements N]\n"
     "                            [--method auto|dense|fast] [--eta E] [--degree M] [--visibility auto|occluded]\n"
-    "                            [--no-estimate] [--out PREFIX] [--threads T] [--quiet]\n"
-    "  SCENE: an OFF or OBJ mesh (any set of planar polygons that do not cross, as `solve` takes).\n"
+    "                            [--no-estimate] [--reciprocal] [--out PREFIX] [--threads T] [--quiet]\n"
+    "  SCENE: an OFF, OBJ or STL mesh (any set of planar polygons that do not cross, as `solve` takes).\n"
     "  F_IJ is the fraction of the radiation leaving group I diffusely that reaches group J directly,\n"
     "  the line of sight computed unless the scene is proven convex. --groups facet (default): every\n"
-    "  input face its own group; material: the faces of one OBJ material (usemtl; the OBJ's MTL is read).\n"
+    "  input face its own group; object: the faces of one OBJ object or group (o, g) or ASCII STL solid;\n"
+    "  material: the faces of one OBJ material (usemtl; the OBJ's MTL is read).\n"
     "  --levels L refines L times (n = 4^L n0); --max-elements N (default 20000) takes the largest level\n"
     "  with n <= N. The factors are also computed one level coarser and |F(L) - F(L-1)| is written as\n"
-    "  their error estimate (--no-estimate: not). Writes PREFIX.csv (per group: area, F to every group,\n"
+    "  their error estimate (--no-estimate: not). --reciprocal makes the matrix reciprocal (A_I F_IJ =\n"
+    "  A_J F_JI) and closed (rows summing to 1 in an enclosed scene), as thermal models need, and says\n"
+    "  by how much it moved. Writes PREFIX.csv (per group: area, F to every group,\n"
     "  and 1 - sum_J F_IJ: the sky view factor of an open scene, the closure defect of an enclosed one),\n"
     "  PREFIX_error.csv (the estimates) and PREFIX.npy (F as float64, numpy.load); PREFIX defaults to\n"
     "  the scene's name with '_viewfactors' in the current directory. A summary goes to stdout.\n"
@@ -52,7 +55,7 @@ void add_view_factor_options(CLI::App& app, ViewFactorsCommandLine& line) {
   CLI::Option* max_elements =
       app.add_option("--max-elements", o.max_elements)->type_name("N")->transform(integer_in(1, 1 << 30));
   levels->excludes(max_elements);
-  app.add_option("--groups", line.groups)->type_name("facet|material")->check(one_of({"facet", "material"}));
+  app.add_option("--groups", line.groups)->type_name("facet|object|material")->check(one_of({"facet", "object", "material"}));
   app.add_option("--out", line.prefix)->type_name("PREFIX")->check([](const std::string& prefix) {
     return prefix.empty() ? std::string("the prefix is empty") : std::string();
   });
@@ -66,6 +69,7 @@ void add_view_factor_options(CLI::App& app, ViewFactorsCommandLine& line) {
       ->type_name("auto|occluded")
       ->check(one_of({"auto", "occluded"}));
   app.add_flag("--no-estimate", line.no_estimate);
+  app.add_flag("--reciprocal", line.o.reciprocal);
   app.add_option("--threads", line.threads)->type_name("T")->transform(thread_count());
   app.add_flag("--quiet", line.quiet);
 }
@@ -87,6 +91,7 @@ void print_summary(const ViewFactors& v, const std::string& scene_path, const st
     std::printf("reciprocity: largest |A_I F_IJ - A_J F_JI| / max %.3e (%s, %s)\n", v.reciprocity_defect,
                 v.names[static_cast<std::size_t>(v.reciprocity_I)].c_str(),
                 v.names[static_cast<std::size_t>(v.reciprocity_J)].c_str());
+  if (v.correction > 0) std::printf("made reciprocal and closed: F moved by %.3e at most\n", v.correction);
   if (v.error.size() > 0)
     std::printf("error estimate: largest |F(L) - F(L-1)| %.3e\n", largest_error);
   else
@@ -103,13 +108,15 @@ int run_view_factors(const CLI::App& app, ViewFactorsCommandLine& line) {
   o.estimate_error = !line.no_estimate;
   if (!line.quiet) o.solve.progress = [](const std::string& s) { std::cerr << "panelrad viewfactors: " << s << "\n"; };
   LoadOptions load;
-  load.geometry_only = line.groups == "facet";  // the mesh alone; materials only to group by them
+  load.geometry_only = line.groups != "material";  // the mesh alone; materials only to group by them
   const Scene scene = load_scene(line.scene_path, load);  // errors: exit 1 (main)
   if (!line.quiet)
     for (const std::string& note : scene.notes()) std::cerr << "panelrad viewfactors: note: " << note << "\n";
   SurfaceGroups groups;
   try {
-    groups = line.groups == "facet" ? groups_by_facet(scene) : groups_by_material(scene);
+    groups = line.groups == "facet"    ? groups_by_facet(scene)
+             : line.groups == "object" ? groups_by_object(scene)
+                                       : groups_by_material(scene);
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(line.scene_path + ": " + e.what());
   }

@@ -1,5 +1,5 @@
-// libFuzzer target for the mesh reader: the bytes are read as an OFF file and as an OBJ
-// file (geometry::read_off / read_obj), and whatever parses is validated as a scene
+// libFuzzer target for the mesh reader: the bytes are read as an OFF file, an OBJ file and an
+// STL file (geometry::read_off / read_obj / read_stl), and whatever parses is validated as a scene
 // (geometry::validate_scene: the convex check, then the general rules) and, when valid,
 // subdivided once into a cluster tree; a valid general scene's faces also become occluders, and
 // the shafts from a few centroids to a few faces are classified and clipped.
@@ -65,11 +65,15 @@ void check_mesh(TriangleMesh& mesh) {
     }
 }
 
-void read_as(bool obj, const std::string& text) {
+enum class Format { off, obj, stl };
+
+void read_as(Format format, const std::string& text) {
   std::istringstream in(text);
   std::vector<std::string> notes;
   try {
-    TriangleMesh mesh = obj ? read_obj(in, "fuzz.obj", &notes) : read_off(in, "fuzz.off", &notes);
+    TriangleMesh mesh = format == Format::obj   ? read_obj(in, "fuzz.obj", &notes)
+                        : format == Format::off ? read_off(in, "fuzz.off", &notes)
+                                                : read_stl(in, "fuzz.stl", &notes);
     check_mesh(mesh);
   } catch (const MeshError&) {
     // The documented outcome for bad input.
@@ -80,7 +84,8 @@ void read_as(bool obj, const std::string& text) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
-  read_as(false, text);
-  read_as(true, text);
+  read_as(Format::off, text);
+  read_as(Format::obj, text);
+  read_as(Format::stl, text);
   return 0;
 }

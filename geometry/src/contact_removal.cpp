@@ -164,6 +164,7 @@ CutMesh cut_covered(const TriangleMesh& mesh, const std::vector<std::vector<Inde
   out.mesh.num_facets = mesh.num_facets;
   out.mesh.source = mesh.source;
   out.mesh.facet_line = mesh.facet_line;
+  out.mesh.facet_group = mesh.facet_group;
   out.removed_of_facet.assign(at(mesh.num_facets), 0.0);
   std::map<std::array<double, 3>, Index> made;
   for (Sz v = 0; v < mesh.vertices.size(); ++v)

@@ -12,6 +12,8 @@
 // cross-check (read_mesh_with_openmesh, openmesh_io.cpp): both agree on well-formed files.
 #include <panelrad/geometry/mesh_io.hpp>
 
+#include "stl_io.hpp"
+
 #include "polygon_triangulation.hpp"
 
 #include <panelrad/geometry/input_rounding.hpp>
@@ -544,13 +546,21 @@ TriangleMesh parse_obj(const std::string& text, const std::string& name, std::ve
   std::vector<Index> face;
   std::string usemtl;  // the material in force (materials only)
   long usemtl_line = 0;
+  std::string group;   // the object or group in force (`o` or `g`, the later one)
+  std::vector<std::string> face_group;
+  bool named = false;
   do {
     const std::string_view key = l.tokens[0];
     if (materials) read_obj_material_statement(l, name, *materials, usemtl, usemtl_line);
+    if (key == "o" || key == "g") {
+      group = join_from(l.tokens, 1);
+      named = named || !group.empty();
+    }
     if (key == "v") {
       read_obj_vertex(l, name, raw);
     } else if (key == "f") {
       read_obj_face(l, name, raw, pending, face);
+      face_group.push_back(group);
       if (materials) {
         materials->face_material.push_back(usemtl);
         materials->face_line.push_back(l.number);
@@ -563,7 +573,9 @@ TriangleMesh parse_obj(const std::string& text, const std::string& name, std::ve
     }
   } while (cursor.next(l));
   check_obj_complete(raw, pending, name);
-  return build_mesh(raw, name, notes);
+  TriangleMesh mesh = build_mesh(raw, name, notes);
+  if (named) mesh.facet_group = std::move(face_group);
+  return mesh;
 }
 
 /// The bounded reader (text_file.hpp) with its errors as MeshError.
@@ -604,7 +616,7 @@ std::string read_mesh_file(const std::string& path, const TextReadOptions& optio
   const std::string ext = lower_extension(path);
   if (!fs::is_directory(status) && ext != ".off" && ext != ".obj")
     fail(path, 0, "unknown mesh format " + show(ext.empty() ? std::string("(no extension)") : ext) +
-                      ": expected .off or .obj");
+                      ": expected .off, .obj or .stl");
   try {
     return read_text_file(path, "", options);
   } catch (const TextFileError& e) {
@@ -616,13 +628,15 @@ bool is_off(const std::string& path) { return lower_extension(path) == ".off"; }
 }  // namespace
 
 TriangleMesh read_mesh(const std::string& path, std::vector<std::string>* notes, const TextReadOptions& options) {
+  if (lower_extension(path) == ".stl") return read_stl_file(path, notes, options);
   const std::string text = read_mesh_file(path, options);
   return is_off(path) ? parse_off(text, path, notes) : parse_obj(text, path, notes);
 }
 
 TriangleMesh read_obj_with_materials(const std::string& path, ObjMaterialUse& materials,
                                      std::vector<std::string>* notes, const TextReadOptions& options) {
-  if (is_off(path)) fail(path, 0, "an OFF file has no materials: expected an .obj file");
+  if (is_off(path) || lower_extension(path) == ".stl")
+    fail(path, 0, "an " + std::string(is_off(path) ? "OFF" : "STL") + " file has no materials: expected an .obj file");
   const std::string text = read_mesh_file(path, options);
   materials = ObjMaterialUse{};
   return parse_obj(text, path, notes, &materials);

@@ -301,13 +301,16 @@ class ViewFactors:
     def self_check_error(self) -> float | None: ...
     @property
     def seconds(self) -> float: ...
+    @property
+    def correction(self) -> float: ...
     def write(self, prefix: PathLike) -> list[str]: ...
 
 def view_factors(
     scene: Scene,
-    groups: Literal["facet", "material"] | Sequence[str] = "facet",
+    groups: Literal["facet", "object", "material"] | Sequence[str] = "facet",
     *,
     estimate_error: bool = True,
+    reciprocal: bool = False,
     block_columns: int = 8,
     level: int | None = None,
     max_elements: int = 20000,

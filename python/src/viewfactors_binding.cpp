@@ -21,17 +21,18 @@ namespace panelrad::python {
 
 namespace {
 
-/// groups: "facet", "material", or a sequence of one name per input facet (the groups in the order
+/// groups: "facet", "object", "material", or a sequence of one name per input facet (the groups in the order
 /// of their first facet).
 SurfaceGroups surface_groups(const Scene& scene, py::handle groups) {
   if (py::isinstance<py::str>(groups)) {
     const std::string how = groups.cast<std::string>();
     if (how == "facet") return groups_by_facet(scene);
+    if (how == "object") return groups_by_object(scene);
     if (how == "material") return groups_by_material(scene);
-    throw std::invalid_argument("groups: '" + how + "' is not 'facet', 'material' or a name per facet");
+    throw std::invalid_argument("groups: '" + how + "' is not 'facet', 'object', 'material' or a name per facet");
   }
   if (!py::isinstance<py::sequence>(groups))
-    throw py::type_error("groups: expected 'facet', 'material' or a sequence of one name per facet");
+    throw py::type_error("groups: expected 'facet', 'object', 'material' or a sequence of one name per facet");
   SurfaceGroups g;
   std::map<std::string, geometry::Index> index;
   for (const py::handle item : groups.cast<py::sequence>()) {
@@ -92,6 +93,8 @@ the radiation leaving group I diffusely that reaches group J directly.
           },
           "The fast operator's measured relative product error (None: dense).")
       .def_property_readonly("seconds", [](const ViewFactors& v) { return v.seconds; })
+      .def_property_readonly("correction", [](const ViewFactors& v) { return v.correction; },
+                             "With reciprocal=True, max |F - F as computed|; else 0.")
       .def(
           "write",
           [](const ViewFactors& v, py::handle prefix) {
@@ -108,7 +111,8 @@ the radiation leaving group I diffusely that reaches group J directly.
 
   m.def(
       "view_factors",
-      [](std::shared_ptr<Scene> scene, py::object groups, bool estimate_error, int block_columns, std::optional<int> level,
+      [](std::shared_ptr<Scene> scene, py::object groups, bool estimate_error, bool reciprocal, int block_columns,
+         std::optional<int> level,
          long max_elements, double accuracy, std::string method, std::optional<double> eta, std::optional<int> degree,
          std::optional<std::string> near, std::optional<int> mu, std::string visibility, std::optional<int> threads,
          py::object progress) {
@@ -118,22 +122,27 @@ the radiation leaving group I diffusely that reaches group J directly.
                                                       std::move(near), mu, std::move(visibility), "auto", std::nullopt,
                                                       1000, threads, std::move(progress)));
         o.estimate_error = estimate_error;
+        o.reciprocal = reciprocal;
         o.block_columns = block_columns;
         const SurfaceGroups g = surface_groups(*scene, groups);
         py::gil_scoped_release release;
         return std::make_shared<ViewFactors>(compute_view_factors(*scene, g, o));
       },
       py::arg("scene"), py::arg("groups") = "facet", py::kw_only(), py::arg("estimate_error") = true,
+      py::arg("reciprocal") = false,
       py::arg("block_columns") = 8, py::arg("level") = py::none(), py::arg("max_elements") = 20000,
       py::arg("accuracy") = 0.05, py::arg("method") = "auto", py::arg("eta") = py::none(), py::arg("degree") = py::none(),
       py::arg("near") = py::none(), py::arg("mu") = py::none(), py::arg("visibility") = "auto",
       py::arg("threads") = py::none(), py::arg("progress") = py::none(), R"doc(
 The view factors between groups of the scene's surfaces: groups 'facet' (every input face),
-'material' (the faces of one OBJ material) or a sequence of one group name per input facet.
+'object' (an OBJ's o or g, an ASCII STL's solid), 'material' (the faces of one OBJ material) or a
+sequence of one group name per input facet.
 F[I, J] = (1 / A_I) sum_{i in I} A_i (H chi_J)_i with the solver's operator H (the line of sight
 computed unless the scene is proven convex), every group's indicator in block products of
 block_columns columns. With estimate_error the factors are also computed one level coarser and
-|F(L) - F(L-1)| is the error estimate. The other keywords as Solver's. Returns a ViewFactors.
+|F(L) - F(L-1)| is the error estimate. With reciprocal the matrix is made reciprocal and closed
+(ViewFactors.correction: by how much it moved). The other keywords as Solver's. Returns a
+ViewFactors.
 )doc");
 }
 

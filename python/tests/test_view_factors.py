@@ -55,7 +55,9 @@ def test_files_and_no_estimate(tmp_path):
 
 def test_bad_arguments():
     cube = panelrad.paper_cube()
-    with pytest.raises(panelrad.ArgumentError, match="'object' is not"):
+    with pytest.raises(panelrad.ArgumentError, match="'solid' is not"):
+        panelrad.view_factors(cube, "solid")
+    with pytest.raises(panelrad.ArgumentError, match="names no object"):
         panelrad.view_factors(cube, "object")
     with pytest.raises(panelrad.ArgumentError, match="no materials"):
         panelrad.view_factors(cube, "material")
@@ -65,3 +67,39 @@ def test_bad_arguments():
         panelrad.view_factors(cube, [1, 2, 3, 4, 5, 6])
     with pytest.raises(panelrad.ArgumentTypeError, match="did you mean 'level'"):
         panelrad.view_factors(cube, levels=2)
+
+
+def test_stl_from_python(tmp_path):
+    """An ASCII STL of the room with a box, one solid each: read as geometry only, grouped by its
+    solids, the same factors as the arrays' scene grouped by name."""
+    vertices, triangles, facets = room_with_box()
+    lines = []
+    for name, wanted in (("room", range(6)), ("box", range(6, 12))):
+        lines.append(f"solid {name}")
+        for t, f in zip(triangles, facets):
+            if f in wanted:
+                lines.append("facet normal 0 0 0\nouter loop")
+                lines += [f"vertex {x!r} {y!r} {z!r}" for x, y, z in vertices[t]]
+                lines.append("endloop\nendfacet")
+        lines.append(f"endsolid {name}")
+    path = tmp_path / "room.stl"
+    path.write_text("\n".join(lines) + "\n")
+    with pytest.raises(panelrad.SceneFileError, match="geometry only"):
+        panelrad.load_scene(path)
+    stl = panelrad.load_scene(path, geometry_only=True)
+    assert stl.num_facets == 24
+    a = panelrad.view_factors(stl, "object", level=2, estimate_error=False)
+    arrays = panelrad.Scene(vertices, triangles, facets=np.arange(24))  # each triangle a face, as in the STL
+    b = panelrad.view_factors(arrays, ["room"] * 12 + ["box"] * 12, level=2, estimate_error=False)
+    assert a.names == ["room", "box"]
+    np.testing.assert_array_equal(a.F, b.F)
+
+
+def test_reciprocal_and_closed():
+    vertices, triangles, facets = room_with_box()
+    scene = panelrad.Scene(vertices, triangles, facets=facets)
+    vf = panelrad.view_factors(scene, level=2, reciprocal=True, estimate_error=False)
+    assert vf.correction > 0
+    AF = vf.area[:, None] * vf.F
+    np.testing.assert_allclose(AF, AF.T, atol=1e-13)
+    np.testing.assert_allclose(vf.F.sum(axis=1), np.ones(12), atol=1e-12)

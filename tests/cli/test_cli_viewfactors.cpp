@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -116,6 +117,33 @@ TEST_F(CliViewFactors, GroupsByMaterial) {
   }
 }
 
+// An ASCII STL grouped by its solids: the floor one group, the other five faces another.
+TEST_F(CliViewFactors, StlGroupedBySolid) {
+  const char* corners[6][4] = {{"0 0 0", "0 1 0", "0 1 1", "0 0 1"}, {"1 0 0", "1 0 1", "1 1 1", "1 1 0"},
+                               {"0 0 0", "0 0 1", "1 0 1", "1 0 0"}, {"0 1 0", "1 1 0", "1 1 1", "0 1 1"},
+                               {"0 0 0", "1 0 0", "1 1 0", "0 1 0"}, {"0 0 1", "0 1 1", "1 1 1", "1 0 1"}};
+  std::ostringstream stl;
+  for (int f = 0; f < 6; ++f) {
+    if (f == 0 || f == 4) stl << (f ? "endsolid walls\n" : "") << "solid " << (f == 4 ? "floor" : "walls") << "\n";
+    const char* const* c = corners[f];
+    for (const auto& t : {std::array<int, 3>{0, 1, 2}, std::array<int, 3>{0, 2, 3}})
+      stl << "facet normal 0 0 0\nouter loop\nvertex " << c[t[0]] << "\nvertex " << c[t[1]] << "\nvertex " << c[t[2]]
+          << "\nendloop\nendfacet\n";
+    if (f == 4) stl << "endsolid floor\nsolid walls\n";
+  }
+  stl << "endsolid walls\n";
+  write("cube.stl", stl.str());
+  const CliRun r = run("viewfactors " + path("cube.stl") + " --groups object --levels 2 --no-estimate --out " +
+                       path("s") + " --quiet");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto F = read_csv(path("s.csv"));
+  ASSERT_EQ(F.size(), 3u);
+  EXPECT_EQ(F[0], (std::vector<std::string>{"group", "area", "walls", "floor", "closure_defect"}));
+  EXPECT_NEAR(std::stod(F[2][1]), 1.0, 1e-15);  // the floor's area
+  EXPECT_NEAR(std::stod(F[2][2]), 1.0, 1e-12);  // the floor sees only the other faces
+  EXPECT_EQ(std::stod(F[2][3]), 0.0);           // and not itself
+}
+
 // Bad input: nothing written, exit 1 with the reason; usage errors exit 2.
 TEST_F(CliViewFactors, RefusalsWriteNothing) {
   write("broken.obj", "v 0 0 0\nv 1 0 0\nf 1 2 3\n");
@@ -127,7 +155,11 @@ TEST_F(CliViewFactors, RefusalsWriteNothing) {
   r = run("viewfactors " + path("cube.obj") + " --groups material --out " + path("y") + " --quiet");
   EXPECT_EQ(r.status, 1) << r.output;  // the materials cannot be read
   EXPECT_FALSE(fs::exists(path("y.csv")));
-  r = run("viewfactors " + path("cube.obj") + " --groups object");
+  r = run("viewfactors " + path("cube.obj") + " --groups object --out " + path("z") + " --quiet");
+  EXPECT_EQ(r.status, 1) << r.output;  // the OBJ names no object (o, g)
+  EXPECT_NE(r.output.find("names no object"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(path("z.csv")));
+  r = run("viewfactors " + path("cube.obj") + " --groups solid");
   EXPECT_EQ(r.status, 2) << r.output;
   r = run("viewfactors");
   EXPECT_EQ(r.status, 2) << r.output;

@@ -1,5 +1,5 @@
 // Regression inputs of the mesh-reader fuzzer (fuzz/): every file under tests/data/fuzz
-// (also the fuzzer's seeds) goes through the fuzz target's checks, read as OFF and as OBJ: the
+// (also the fuzzer's seeds) goes through the fuzz target's checks, read as OFF, OBJ and STL: the
 // only failure allowed is a geometry::MeshError with a message; what parses is a consistent mesh,
 // and a mesh that validates either gives a finite cluster tree or is refused with a MeshError.
 // The hand-made adversarial inputs (header counts near INT_MAX, index overflow, extreme
@@ -44,11 +44,13 @@ std::vector<fs::path> inputs() {
 }
 
 // What the fuzz target checks (fuzz/fuzz_mesh_reader.cpp), as test assertions.
-void check_text(const std::string& text, bool obj, const std::string& what) {
+enum class Format { off, obj, stl };
+
+void check_text(const std::string& text, Format format, const std::string& what) {
   std::istringstream in(text);
   TriangleMesh mesh;
   try {
-    mesh = obj ? read_obj(in, what) : read_off(in, what);
+    mesh = format == Format::obj ? read_obj(in, what) : format == Format::off ? read_off(in, what) : read_stl(in, what);
   } catch (const MeshError& e) {
     EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << "the message names the file: " << e.what();
     return;
@@ -90,8 +92,9 @@ TEST(FuzzRegressions, EveryInputIsReadOrRefusedWithAMeshError) {
   ASSERT_GE(files.size(), 10u) << kDir;
   for (const auto& f : files) {
     const std::string text = slurp(f);
-    check_text(text, false, f.filename().string() + " as OFF");
-    check_text(text, true, f.filename().string() + " as OBJ");
+    check_text(text, Format::off, f.filename().string() + " as OFF");
+    check_text(text, Format::obj, f.filename().string() + " as OBJ");
+    check_text(text, Format::stl, f.filename().string() + " as STL");
   }
 }
 

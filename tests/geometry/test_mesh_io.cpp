@@ -220,8 +220,10 @@ TEST(MeshIo, ReadMeshByExtensionAndFileErrors) {
     return (dir / name).string();
   };
   EXPECT_EQ(pg::read_mesh(write("upper.OFF", kTetraOff)).triangles.size(), 4u);
-  const std::string stl = write("mesh.stl", "solid x\nendsolid x\n");
-  EXPECT_CONTAINS(error_of([&] { pg::read_mesh(stl); }), stl + ": unknown mesh format '.stl'");
+  const std::string stl = write("mesh.stl", "solid x\nendsolid x\n");  // STL is read (test_stl_io): no facet here
+  EXPECT_CONTAINS(error_of([&] { pg::read_mesh(stl); }), stl + ": no facet");
+  EXPECT_CONTAINS(error_of([&] { pg::read_mesh(write("mesh.ply", kTetraOff)); }),
+                  "unknown mesh format '.ply': expected .off, .obj or .stl");
   EXPECT_CONTAINS(error_of([&] { pg::read_mesh(write("noext", kTetraOff)); }), "unknown mesh format '(no extension)'");
   EXPECT_CONTAINS(error_of([&] { pg::read_mesh((dir / "missing.off").string()); }), "missing.off: cannot open: no such file");
   std::filesystem::create_directories(dir / "dir.off");

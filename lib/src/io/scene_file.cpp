@@ -36,6 +36,10 @@ Scene load_channel_scene(const std::string& path, const std::string& materials_p
     return io_detail::to_scene(io_detail::load_obj_scene(path, options));
   }
   if (ext == ".off") return io_detail::to_scene(io_detail::load_off_scene(path, materials_path, options));
+  if (ext == ".stl")
+    io_detail::fail(path, 0, "an STL file is a mesh without reflectivity or emission: read it as geometry only "
+                             "(LoadOptions::geometry_only; in Python geometry_only=True; `panelrad viewfactors` "
+                             "does), or give the scene as .obj (with MTL) or .off (with a JSON sidecar)");
   io_detail::fail(path, 0, "unknown scene format " + io_detail::in_quotes(ext.empty() ? "(no extension)" : ext) +
                                ": expected .obj (with MTL) or .off (with a JSON sidecar)");
 }

@@ -73,19 +73,34 @@ SurfaceGroups groups_by_facet(const Scene& scene) {
   return g;
 }
 
-SurfaceGroups groups_by_material(const Scene& scene) {
-  const std::vector<std::string>& material = scene.facet_material();
-  if (material.empty())
-    throw std::invalid_argument("groups by material: the scene has no materials (an OBJ's usemtl); group by facet instead");
+namespace {
+
+/// One group per distinct name of `per_facet`, in the order of first use; "" is "default".
+SurfaceGroups groups_by_name(const std::vector<std::string>& per_facet) {
   SurfaceGroups g;
   std::map<std::string, Index> index;
-  for (const std::string& m : material) {
+  for (const std::string& m : per_facet) {
     const std::string name = m.empty() ? "default" : m;
     const auto [it, added] = index.try_emplace(name, static_cast<Index>(g.names.size()));
     if (added) g.names.push_back(name);
     g.of_facet.push_back(it->second);
   }
   return g;
+}
+
+}  // namespace
+
+SurfaceGroups groups_by_material(const Scene& scene) {
+  if (scene.facet_material().empty())
+    throw std::invalid_argument("groups by material: the scene has no materials (an OBJ's usemtl); group by facet instead");
+  return groups_by_name(scene.facet_material());
+}
+
+SurfaceGroups groups_by_object(const Scene& scene) {
+  if (scene.mesh().facet_group.empty())
+    throw std::invalid_argument("groups by object: the file names no object (an OBJ's o or g, an ASCII STL's solid); "
+                                "group by facet instead");
+  return groups_by_name(scene.mesh().facet_group);
 }
 
 std::string groups_problem(const Scene& scene, const SurfaceGroups& groups) {
@@ -112,6 +127,37 @@ std::string groups_problem(const Scene& scene, const SurfaceGroups& groups) {
   return "";
 }
 
+Eigen::MatrixXd reciprocal_and_closed(const Eigen::MatrixXd& F, const Eigen::VectorXd& area, bool enclosed) {
+  const Index G = F.rows();
+  if (F.cols() != G || area.size() != G)
+    throw std::invalid_argument("reciprocal_and_closed: F (" + std::to_string(F.rows()) + " x " +
+                                std::to_string(F.cols()) + ") and the areas (" + std::to_string(area.size()) +
+                                ") differ in size");
+  if (!(F.array() >= 0).all() || !(area.array() >= 0).all())
+    throw std::invalid_argument("reciprocal_and_closed: F and the areas must be finite and >= 0");
+  const Eigen::MatrixXd AF = area.asDiagonal() * F;
+  const Eigen::MatrixXd S = 0.5 * (AF + AF.transpose());
+  const Eigen::VectorXd& target = area;
+  Eigen::VectorXd d = Eigen::VectorXd::Ones(G);
+  for (int sweep = 0; enclosed; ++sweep) {
+    const Eigen::VectorXd Sd = S * d;
+    double residual = 0;
+    for (Index I = 0; I < G; ++I) {
+      if (!(Sd[I] > 0) || !(target[I] > 0)) continue;  // exchanges nothing: the row stays 0
+      residual = std::max(residual, std::abs(d[I] * Sd[I] - target[I]) / target[I]);
+    }
+    if (residual <= 1e-13) break;
+    if (sweep == 10000)
+      throw std::runtime_error("reciprocal_and_closed: the balance did not converge (residual " +
+                               std::to_string(residual) + " after 10,000 sweeps)");
+    for (Index I = 0; I < G; ++I)
+      if (Sd[I] > 0 && target[I] > 0) d[I] = std::sqrt(d[I] * target[I] / Sd[I]);
+  }
+  Eigen::MatrixXd out = d.asDiagonal() * S * d.asDiagonal();
+  for (Index I = 0; I < G; ++I) out.row(I) /= area[I];
+  return out;
+}
+
 ViewFactors compute_view_factors(const Scene& scene, const SurfaceGroups& groups, const ViewFactorOptions& options) {
   if (const std::string why = groups_problem(scene, groups); !why.empty()) throw std::invalid_argument(why);
   if (options.block_columns < 1)
@@ -136,6 +182,12 @@ ViewFactors compute_view_factors(const Scene& scene, const SurfaceGroups& groups
     const LevelFactors c = factors_at(scene, groups, coarser, options.block_columns);
     v.error = (fine.F - c.F).cwiseAbs();
     v.uncovered_error = (v.uncovered - (Eigen::VectorXd::Ones(c.F.rows()) - c.F.rowwise().sum())).cwiseAbs();
+  }
+  if (options.reciprocal) {
+    const Eigen::MatrixXd balanced = reciprocal_and_closed(v.F.cwiseMax(0.0), v.area, v.enclosed);
+    v.correction = (balanced - v.F).cwiseAbs().maxCoeff();
+    v.F = balanced;
+    v.uncovered = Eigen::VectorXd::Ones(v.F.rows()) - v.F.rowwise().sum();
   }
   const Index G = static_cast<Index>(v.names.size());
   for (Index I = 0; I < G; ++I)

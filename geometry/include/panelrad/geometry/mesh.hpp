@@ -29,6 +29,9 @@ struct TriangleMesh {
   /// Per facet, the 1-based line of the file where its face is written (read_mesh); empty for
   /// meshes built in code. Messages name facet f as "input face f (line L)".
   std::vector<long> facet_line;
+  /// Per facet, the name of the object it belongs to as the file says (OBJ: the `o` or `g`
+  /// statement in force, "" before any; STL: its `solid`); empty when the file names none.
+  std::vector<std::string> facet_group;
 };
 
 /// Any problem with mesh input or geometry: the message names what, where and which rule.

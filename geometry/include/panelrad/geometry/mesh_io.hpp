@@ -1,5 +1,5 @@
 #pragma once
-// Mesh input: OFF and OBJ files. Vertices are shared: vertices with exactly the same coordinates
+// Mesh input: OFF, OBJ and STL files (STL: read_stl below). Vertices are shared: vertices with exactly the same coordinates
 // are merged (so a "triangle soup" works) and vertices used by no face are dropped, each reported
 // in `notes`. Input face i becomes facet i, and TriangleMesh::facet_line[i] is the line where it is
 // written; every message names it "input face i (line L)", i counted from 0 in both formats (as
@@ -56,7 +56,7 @@
 
 namespace panelrad::geometry {
 
-/// Reads an OFF or OBJ file, chosen by extension (case-insensitive). Throws MeshError naming the
+/// Reads an OFF, OBJ or STL file, chosen by extension (case-insensitive). Throws MeshError naming the
 /// file, the line and what is wrong: missing/unreadable file, not a regular file, above the size
 /// limit, a NUL byte, unknown extension, empty or truncated file, garbage, a face index out of range,
 /// a face with fewer than 3 vertices, a non-finite coordinate, a polygon that is not a planar simple
@@ -87,6 +87,12 @@ TriangleMesh read_obj_with_materials(const std::string& path, ObjMaterialUse& ma
 TriangleMesh read_off(std::istream& in, const std::string& name, std::vector<std::string>* notes = nullptr,
                       const TextReadOptions& options = {});
 TriangleMesh read_obj(std::istream& in, const std::string& name, std::vector<std::string>* notes = nullptr,
+                      const TextReadOptions& options = {});
+/// An STL mesh, ASCII or binary (stl_io.cpp: read with CGAL::IO::read_STL), up to the size limit:
+/// each triangle one input face; corners with identical coordinates merged; facet_group from the
+/// ASCII `solid` names. MeshError naming the file for an empty, truncated or unreadable one, a
+/// binary record with a non-finite corner, or bytes that are neither text nor a binary STL.
+TriangleMesh read_stl(std::istream& in, const std::string& name, std::vector<std::string>* notes = nullptr,
                       const TextReadOptions& options = {});
 
 }  // namespace panelrad::geometry

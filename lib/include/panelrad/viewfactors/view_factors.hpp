@@ -32,6 +32,10 @@ SurfaceGroups groups_by_facet(const Scene& scene);
 /// facet written before any usemtl is in the group "default". std::invalid_argument when the
 /// scene has no materials (an OFF, or an OBJ read as geometry only).
 SurfaceGroups groups_by_material(const Scene& scene);
+/// The facets of one object one group: an OBJ's `o` or `g` name in force, an ASCII STL's `solid`
+/// (TriangleMesh::facet_group), in the order of first use; a facet before any name is in the group
+/// "default". std::invalid_argument when the file names no object.
+SurfaceGroups groups_by_object(const Scene& scene);
 /// What is wrong with `groups` for `scene` ("" when nothing): a facet count that differs, a
 /// group index out of range, a name empty or given twice, a group with no facet.
 std::string groups_problem(const Scene& scene, const SurfaceGroups& groups);
@@ -46,6 +50,10 @@ struct ViewFactorOptions {
   bool estimate_error = true;
   /// Group indicators per block product.
   int block_columns = 8;
+  /// Make the matrix reciprocal (A_I F_IJ = A_J F_JI) and, in an enclosed scene, closed (rows
+  /// summing to 1), as thermal network models need (reciprocal_and_closed); in an open one the sky
+  /// takes what the rows leave. ViewFactors::correction says by how much F moved.
+  bool reciprocal = false;
 };
 
 struct ViewFactors {
@@ -69,7 +77,19 @@ struct ViewFactors {
   std::string method;               ///< describe_parameters of the operator
   double self_check_error = -1;     ///< the fast operator's relative product error; -1: dense
   double seconds = 0;               ///< setup and products, both levels
+  /// With ViewFactorOptions::reciprocal: max |F_IJ - F_IJ as computed|, else 0.
+  double correction = 0;
 };
+
+/// F made reciprocal, and closed when `enclosed`: the exchange areas S = (A F + (A F)^T) / 2 made
+/// symmetric; in an enclosure then scaled symmetrically, S_IJ d_I d_J, until every row sums to A_I
+/// (Sinkhorn-Knopp's balancing of a symmetric matrix: zeros stay zeros, no entry turns negative);
+/// F_IJ = S_IJ d_I d_J / A_I. In an open scene the rows' sums are left to the symmetrization (the
+/// sky, 1 - sum_J F_IJ, takes the rest: reciprocity with the sky, whose area is not defined, is
+/// not asked). Rows that exchange nothing stay 0. std::invalid_argument for sizes that differ or a
+/// negative entry or area; a balance that does not reach 1e-13 in 10,000 sweeps (a pattern of
+/// zeros that no scaling closes) is a std::runtime_error.
+Eigen::MatrixXd reciprocal_and_closed(const Eigen::MatrixXd& F, const Eigen::VectorXd& area, bool enclosed);
 
 /// The view factors between `groups` of `scene` (groups_problem must be ""; std::invalid_argument
 /// naming the problem otherwise). The errors of the solver's setup pass through (ResourceError,
