@@ -11,4 +11,6 @@
 #include <panelrad/solve/scene_solver.hpp>
 #include <panelrad/io/scene_file.hpp>
 #include <panelrad/io/outputs.hpp>
+#include <panelrad/io/view_factor_output.hpp>
+#include <panelrad/viewfactors/view_factors.hpp>
 #include <panelrad/support/version.hpp>
