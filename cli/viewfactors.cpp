@@ -24,7 +24,7 @@ namespace {
 const char* kViewFactorsUsage =
     "usage: panelrad viewfactors SCENE [--groups facet|object|material] [--levels L | --max-elements N]\n"
     "                            [--method auto|dense|fast] [--eta E] [--degree M] [--visibility auto|occluded]\n"
-    "                            [--no-estimate] [--reciprocal] [--out PREFIX] [--threads T] [--quiet]\n"
+    "                            [--no-estimate] [--reciprocal] [--elements] [--out PREFIX] [--threads T] [--quiet]\n"
     "  SCENE: an OFF, OBJ or STL mesh (any set of planar polygons that do not cross, as `solve` takes).\n"
     "  F_IJ is the fraction of the radiation leaving group I diffusely that reaches group J directly,\n"
     "  the line of sight computed unless the scene is proven convex. --groups facet (default): every\n"
@@ -34,7 +34,8 @@ const char* kViewFactorsUsage =
     "  with n <= N. The factors are also computed one level coarser and |F(L) - F(L-1)| is written as\n"
     "  their error estimate (--no-estimate: not). --reciprocal makes the matrix reciprocal (A_I F_IJ =\n"
     "  A_J F_JI) and closed (rows summing to 1 in an enclosed scene), as thermal models need, and says\n"
-    "  by how much it moved. Writes PREFIX.csv (per group: area, F to every group,\n"
+    "  by how much it moved. --elements also writes PREFIX_elements.csv: per element its group, centroid,\n"
+    "  area and sky view factor. Writes PREFIX.csv (per group: area, F to every group,\n"
     "  and 1 - sum_J F_IJ: the sky view factor of an open scene, the closure defect of an enclosed one),\n"
     "  PREFIX_error.csv (the estimates) and PREFIX.npy (F as float64, numpy.load); PREFIX defaults to\n"
     "  the scene's name with '_viewfactors' in the current directory. A summary goes to stdout.\n"
@@ -70,6 +71,7 @@ void add_view_factor_options(CLI::App& app, ViewFactorsCommandLine& line) {
       ->check(one_of({"auto", "occluded"}));
   app.add_flag("--no-estimate", line.no_estimate);
   app.add_flag("--reciprocal", line.o.reciprocal);
+  app.add_flag("--elements", line.o.elements);
   app.add_option("--threads", line.threads)->type_name("T")->transform(thread_count());
   app.add_flag("--quiet", line.quiet);
 }
@@ -120,7 +122,7 @@ int run_view_factors(const CLI::App& app, ViewFactorsCommandLine& line) {
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(line.scene_path + ": " + e.what());
   }
-  for (const std::string& path : view_factor_paths(prefix, o.estimate_error)) check_output_path(path);
+  for (const std::string& path : view_factor_paths(prefix, o.estimate_error, o.elements)) check_output_path(path);
   const ViewFactors v = compute_view_factors(scene, groups, o);
   const std::vector<std::string> written = write_view_factors(v, prefix);
   print_summary(v, line.scene_path, line.groups);

@@ -93,6 +93,36 @@ the radiation leaving group I diffusely that reaches group J directly.
           },
           "The fast operator's measured relative product error (None: dense).")
       .def_property_readonly("seconds", [](const ViewFactors& v) { return v.seconds; })
+      .def_property_readonly(
+          "element_sky",
+          [](const ViewFactors& v) -> std::optional<Eigen::VectorXd> {
+            if (v.elements.sky.size() == 0) return std::nullopt;
+            return v.elements.sky;
+          },
+          "With elements=True: per element of the finest level, 1 - (H 1)_i, its sky view factor (else None).")
+      .def_property_readonly(
+          "element_groups",
+          [](const ViewFactors& v) -> std::optional<std::vector<geometry::Index>> {
+            if (v.elements.sky.size() == 0) return std::nullopt;
+            return v.elements.group;
+          },
+          "With elements=True: each element's group (an index into names), else None.")
+      .def_property_readonly(
+          "element_centroids",
+          [](const ViewFactors& v) -> std::optional<Eigen::MatrixX3d> {
+            if (v.elements.sky.size() == 0) return std::nullopt;
+            Eigen::MatrixX3d c(static_cast<Eigen::Index>(v.elements.centroid.size()), 3);
+            for (std::size_t i = 0; i < v.elements.centroid.size(); ++i) c.row(static_cast<Eigen::Index>(i)) = v.elements.centroid[i];
+            return c;
+          },
+          "With elements=True: each element's collocation point (n x 3), else None.")
+      .def_property_readonly(
+          "element_areas",
+          [](const ViewFactors& v) -> std::optional<Eigen::VectorXd> {
+            if (v.elements.sky.size() == 0) return std::nullopt;
+            return v.elements.area;
+          },
+          "With elements=True: each element's area, else None.")
       .def_property_readonly("correction", [](const ViewFactors& v) { return v.correction; },
                              "With reciprocal=True, max |F - F as computed|; else 0.")
       .def(
@@ -111,7 +141,8 @@ the radiation leaving group I diffusely that reaches group J directly.
 
   m.def(
       "view_factors",
-      [](std::shared_ptr<Scene> scene, py::object groups, bool estimate_error, bool reciprocal, int block_columns,
+      [](std::shared_ptr<Scene> scene, py::object groups, bool estimate_error, bool reciprocal, bool elements,
+         int block_columns,
          std::optional<int> level,
          long max_elements, double accuracy, std::string method, std::optional<double> eta, std::optional<int> degree,
          std::optional<std::string> near, std::optional<int> mu, std::string visibility, std::optional<int> threads,
@@ -123,13 +154,14 @@ the radiation leaving group I diffusely that reaches group J directly.
                                                       1000, threads, std::move(progress)));
         o.estimate_error = estimate_error;
         o.reciprocal = reciprocal;
+        o.elements = elements;
         o.block_columns = block_columns;
         const SurfaceGroups g = surface_groups(*scene, groups);
         py::gil_scoped_release release;
         return std::make_shared<ViewFactors>(compute_view_factors(*scene, g, o));
       },
       py::arg("scene"), py::arg("groups") = "facet", py::kw_only(), py::arg("estimate_error") = true,
-      py::arg("reciprocal") = false,
+      py::arg("reciprocal") = false, py::arg("elements") = false,
       py::arg("block_columns") = 8, py::arg("level") = py::none(), py::arg("max_elements") = 20000,
       py::arg("accuracy") = 0.05, py::arg("method") = "auto", py::arg("eta") = py::none(), py::arg("degree") = py::none(),
       py::arg("near") = py::none(), py::arg("mu") = py::none(), py::arg("visibility") = "auto",
@@ -141,7 +173,8 @@ F[I, J] = (1 / A_I) sum_{i in I} A_i (H chi_J)_i with the solver's operator H (t
 computed unless the scene is proven convex), every group's indicator in block products of
 block_columns columns. With estimate_error the factors are also computed one level coarser and
 |F(L) - F(L-1)| is the error estimate. With reciprocal the matrix is made reciprocal and closed
-(ViewFactors.correction: by how much it moved). The other keywords as Solver's. Returns a
+(ViewFactors.correction: by how much it moved); with elements, every element's sky view factor
+(element_sky, element_groups, element_centroids, element_areas). The other keywords as Solver's. Returns a
 ViewFactors.
 )doc");
 }

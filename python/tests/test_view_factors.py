@@ -103,3 +103,20 @@ def test_reciprocal_and_closed():
     AF = vf.area[:, None] * vf.F
     np.testing.assert_allclose(AF, AF.T, atol=1e-13)
     np.testing.assert_allclose(vf.F.sum(axis=1), np.ones(12), atol=1e-12)
+
+
+def test_element_sky_of_an_open_scene():
+    """A unit floor alone under the sky: every element sees only sky; with a wall, less."""
+    floor = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], dtype=float)
+    alone = panelrad.Scene(floor, [[0, 1, 2], [0, 2, 3]], facets=[0, 0])
+    vf = panelrad.view_factors(alone, level=2, elements=True, estimate_error=False)
+    assert vf.element_sky.shape == (32,)
+    np.testing.assert_array_equal(vf.element_sky, np.ones(32))
+    assert vf.element_centroids.shape == (32, 3)
+    np.testing.assert_allclose(vf.element_areas.sum(), 1.0, rtol=1e-14)
+    assert set(vf.element_groups) == {0}
+    vertices = np.vstack([floor, [[1, 1, 1], [0, 1, 1]]])
+    walled = panelrad.Scene(vertices, [[0, 1, 2], [0, 2, 3], [3, 2, 4], [3, 4, 5]], facets=[0, 0, 1, 1])
+    vf = panelrad.view_factors(walled, level=2, elements=True, estimate_error=False)
+    assert vf.element_sky.max() < 1 and vf.element_sky.min() > 0.5
+    assert panelrad.view_factors(walled, level=1, estimate_error=False).element_sky is None

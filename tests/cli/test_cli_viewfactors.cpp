@@ -133,9 +133,15 @@ TEST_F(CliViewFactors, StlGroupedBySolid) {
   }
   stl << "endsolid walls\n";
   write("cube.stl", stl.str());
-  const CliRun r = run("viewfactors " + path("cube.stl") + " --groups object --levels 2 --no-estimate --out " +
+  const CliRun r = run("viewfactors " + path("cube.stl") + " --groups object --levels 2 --no-estimate --elements --out " +
                        path("s") + " --quiet");
   ASSERT_EQ(r.status, 0) << r.output;
+  // Every element's sky view factor: 12 triangles x 16 elements, 0 up to the far field in this
+  // closed cube.
+  const auto elements = read_csv(path("s_elements.csv"));
+  ASSERT_EQ(elements.size(), 1u + 12 * 16);
+  EXPECT_EQ(elements[0], (std::vector<std::string>{"element", "facet", "group", "x", "y", "z", "area", "sky"}));
+  for (std::size_t i = 1; i < elements.size(); ++i) EXPECT_LT(std::abs(std::stod(elements[i][7])), 1e-6) << i;
   const auto F = read_csv(path("s.csv"));
   ASSERT_EQ(F.size(), 3u);
   EXPECT_EQ(F[0], (std::vector<std::string>{"group", "area", "walls", "floor", "closure_defect"}));

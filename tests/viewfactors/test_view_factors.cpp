@@ -7,10 +7,14 @@
 
 #include <panelrad/geometry/builtin_scenes.hpp>
 #include <panelrad/geometry/mesh_io.hpp>
+#include <panelrad/io/view_factor_output.hpp>
+#include <panelrad/quadrature/exact_integrals.hpp>
 #include <panelrad/viewfactors/view_factors.hpp>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -234,6 +238,46 @@ TEST(ViewFactors, ReciprocalAndClosed) {
   EXPECT_EQ(B(1, 1), 0.0);
   EXPECT_THROW((void)reciprocal_and_closed(F, Eigen::Vector3d(1, 1, 1), true), std::invalid_argument);
   EXPECT_THROW((void)reciprocal_and_closed(-F, Eigen::Vector2d(1, 1), true), std::invalid_argument);
+}
+
+// An open scene, a unit floor with a unit wall standing on its far edge (one-sided sheets facing
+// each other): every element's sky view factor is 1 minus the closed-form point-to-polygon factor
+// of the other sheet (dense, exact entries: to rounding), and the groups' sky columns are the
+// area-weighted means of the elements'; the elements' CSV has a row per element.
+TEST(ViewFactors, SkyOfEveryElementOfAnOpenScene) {
+  geometry::TriangleMesh m;
+  m.source = "floor and wall";
+  m.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {1, 1, 1}, {0, 1, 1}};
+  m.triangles = {{0, 1, 2}, {0, 2, 3}, {3, 2, 4}, {3, 4, 5}};  // floor up; wall towards -y
+  m.facet_of_triangle = {0, 0, 1, 1};
+  m.num_facets = 2;
+  const Scene scene(std::move(m));
+  ASSERT_FALSE(scene.enclosed());
+  ViewFactorOptions o = at_level(2, OperatorMethod::dense);
+  o.elements = true;
+  const ViewFactors v = compute_view_factors(scene, groups_by_facet(scene), o);
+  const ElementSky& e = v.elements;
+  ASSERT_EQ(e.sky.size(), 64);
+  const std::array<std::array<Vec3, 3>, 2> floor = {{{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0)},
+                                                     {Vec3(0, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)}}};
+  const std::array<std::array<Vec3, 3>, 2> wall = {{{Vec3(0, 1, 0), Vec3(1, 1, 0), Vec3(1, 1, 1)},
+                                                    {Vec3(0, 1, 0), Vec3(1, 1, 1), Vec3(0, 1, 1)}}};
+  Eigen::Vector2d weighted = Eigen::Vector2d::Zero();
+  for (Index i = 0; i < 64; ++i) {
+    const bool on_floor = e.facet[static_cast<std::size_t>(i)] == 0;
+    const Vec3 nP = on_floor ? Vec3(0, 0, 1) : Vec3(0, -1, 0), nQ = on_floor ? Vec3(0, -1, 0) : Vec3(0, 0, 1);
+    double other = 0;
+    for (const auto& t : on_floor ? wall : floor) other += quadrature::form_factor(e.centroid[static_cast<std::size_t>(i)], nP, t[0], t[1], t[2], nQ);
+    EXPECT_NEAR(e.sky[i], 1 - other, 1e-13) << "element " << i;
+    EXPECT_GT(e.sky[i], 0.5);
+    weighted[e.group[static_cast<std::size_t>(i)]] += e.area[i] * e.sky[i];
+  }
+  EXPECT_NEAR(weighted[0] / v.area[0], v.uncovered[0], 1e-14);
+  EXPECT_NEAR(weighted[1] / v.area[1], v.uncovered[1], 1e-14);
+  const std::string csv = element_sky_csv(v);
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), "element,facet,group,x,y,z,area,sky");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 65);
+  EXPECT_NE(csv.find("\n0,0,facet 0,"), std::string::npos);
 }
 
 TEST(ViewFactors, BadGroupsAreRefusedByName) {

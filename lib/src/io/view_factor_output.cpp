@@ -34,11 +34,25 @@ std::string number(double x) {
 
 }  // namespace
 
-std::vector<std::string> view_factor_paths(const std::string& prefix, bool with_error) {
+std::vector<std::string> view_factor_paths(const std::string& prefix, bool with_error, bool with_elements) {
   std::vector<std::string> paths{prefix + ".csv"};
   if (with_error) paths.push_back(prefix + "_error.csv");
   paths.push_back(prefix + ".npy");
+  if (with_elements) paths.push_back(prefix + "_elements.csv");
   return paths;
+}
+
+std::string element_sky_csv(const ViewFactors& v) {
+  const ElementSky& e = v.elements;
+  std::ostringstream out;
+  out << "element,facet,group,x,y,z,area,sky\n";
+  for (std::size_t i = 0; i < e.facet.size(); ++i) {
+    const auto k = static_cast<Eigen::Index>(i);
+    out << i << ',' << e.facet[i] << ',' << csv_field(v.names[static_cast<std::size_t>(e.group[i])]);
+    for (int c = 0; c < 3; ++c) out << ',' << number(e.centroid[i][c]);
+    out << ',' << number(e.area[k]) << ',' << number(e.sky[k]) << '\n';
+  }
+  return out.str();
 }
 
 std::string view_factor_csv(const ViewFactors& v, const Eigen::MatrixXd& values, const Eigen::VectorXd& uncovered) {
@@ -80,12 +94,13 @@ std::string npy_bytes(const Eigen::MatrixXd& m) {
 }
 
 std::vector<std::string> write_view_factors(const ViewFactors& v, const std::string& prefix) {
-  const bool with_error = v.error.size() > 0;
-  const std::vector<std::string> paths = view_factor_paths(prefix, with_error);
+  const bool with_error = v.error.size() > 0, with_elements = v.elements.sky.size() > 0;
+  const std::vector<std::string> paths = view_factor_paths(prefix, with_error, with_elements);
   OutputSet set;
   set.add(paths[0], view_factor_csv(v, v.F, v.uncovered));
   if (with_error) set.add(paths[1], view_factor_csv(v, v.error, v.uncovered_error));
-  set.add(paths.back(), npy_bytes(v.F));
+  set.add(paths[with_error ? 2 : 1], npy_bytes(v.F));
+  if (with_elements) set.add(paths.back(), element_sky_csv(v));
   set.commit();
   return paths;
 }

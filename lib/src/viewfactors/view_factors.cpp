@@ -24,9 +24,11 @@ struct LevelFactors {
   Index n = 0;
   std::string method;
   double self_check_error = -1;
+  ElementSky elements;  // with `keep_elements`
 };
 
-LevelFactors factors_at(const Scene& scene, const SurfaceGroups& groups, const SolveOptions& solve, int block_columns) {
+LevelFactors factors_at(const Scene& scene, const SurfaceGroups& groups, const SolveOptions& solve, int block_columns,
+                        bool keep_elements) {
   const RadiositySolver solver(scene, solve);
   const Collocation& col = solver.collocation();
   const Index n = col.size();
@@ -45,6 +47,8 @@ LevelFactors factors_at(const Scene& scene, const SurfaceGroups& groups, const S
     out.area[group[static_cast<std::size_t>(i)]] += a[i];
   }
   out.F = Eigen::MatrixXd::Zero(G, G);
+  Eigen::VectorXd covered;  // (H 1)_i, summed over the groups' columns in group order
+  if (keep_elements) covered = Eigen::VectorXd::Zero(n);
   Eigen::MatrixXd X, Y;
   for (Index first = 0; first < G; first += block_columns) {
     const Index m = std::min<Index>(block_columns, G - first);
@@ -57,6 +61,18 @@ LevelFactors factors_at(const Scene& scene, const SurfaceGroups& groups, const S
     // Sums in element order, one column at a time: the same for any thread count.
     for (Index c = 0; c < m; ++c)
       for (Index i = 0; i < n; ++i) out.F(group[static_cast<std::size_t>(i)], first + c) += a[i] * Y(i, c);
+    if (keep_elements)
+      for (Index c = 0; c < m; ++c) covered += Y.col(c);
+  }
+  if (keep_elements) {
+    ElementSky& e = out.elements;
+    e.group = group;
+    e.area = a;
+    e.sky = Eigen::VectorXd::Ones(n) - covered;
+    for (Index i = 0; i < n; ++i) {
+      e.facet.push_back(col.facet(i));
+      e.centroid.push_back(col.collocation_point(i));
+    }
   }
   for (Index I = 0; I < G; ++I) out.F.row(I) /= out.area[I];
   return out;
@@ -165,7 +181,7 @@ ViewFactors compute_view_factors(const Scene& scene, const SurfaceGroups& groups
   if (options.solve.communicator)
     throw std::invalid_argument("view factors: one process only (the solver's communicator is set)");
   Stopwatch clock;
-  const LevelFactors fine = factors_at(scene, groups, options.solve, options.block_columns);
+  LevelFactors fine = factors_at(scene, groups, options.solve, options.block_columns, options.elements);
   ViewFactors v;
   v.names = groups.names;
   v.area = fine.area;
@@ -176,10 +192,11 @@ ViewFactors compute_view_factors(const Scene& scene, const SurfaceGroups& groups
   v.n = fine.n;
   v.method = fine.method;
   v.self_check_error = fine.self_check_error;
+  v.elements = std::move(fine.elements);
   if (options.estimate_error && fine.level >= 1) {
     SolveOptions coarser = options.solve;
     coarser.level = fine.level - 1;
-    const LevelFactors c = factors_at(scene, groups, coarser, options.block_columns);
+    const LevelFactors c = factors_at(scene, groups, coarser, options.block_columns, false);
     v.error = (fine.F - c.F).cwiseAbs();
     v.uncovered_error = (v.uncovered - (Eigen::VectorXd::Ones(c.F.rows()) - c.F.rowwise().sum())).cwiseAbs();
   }

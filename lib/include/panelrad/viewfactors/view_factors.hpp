@@ -54,6 +54,17 @@ struct ViewFactorOptions {
   /// summing to 1), as thermal network models need (reciprocal_and_closed); in an open one the sky
   /// takes what the rows leave. ViewFactors::correction says by how much F moved.
   bool reciprocal = false;
+  /// Keep per element (level L) its group, centroid, area and sky view factor 1 - (H 1)_i
+  /// (ViewFactors::elements): 1 - sum over every group's column, no extra product.
+  bool elements = false;
+};
+
+/// Per element of the finest level: what ViewFactorOptions::elements keeps.
+struct ElementSky {
+  std::vector<geometry::Index> facet, group;
+  std::vector<geometry::Vec3> centroid;  ///< the collocation point P_i
+  Eigen::VectorXd area;
+  Eigen::VectorXd sky;                   ///< 1 - (H 1)_i: what of P_i's hemisphere no surface covers
 };
 
 struct ViewFactors {
@@ -79,6 +90,8 @@ struct ViewFactors {
   double seconds = 0;               ///< setup and products, both levels
   /// With ViewFactorOptions::reciprocal: max |F_IJ - F_IJ as computed|, else 0.
   double correction = 0;
+  /// With ViewFactorOptions::elements, else empty.
+  ElementSky elements;
 };
 
 /// F made reciprocal, and closed when `enclosed`: the exchange areas S = (A F + (A F)^T) / 2 made
