@@ -2,6 +2,7 @@
 // .npy, with their closure, reciprocity and error estimates.
 #include "commands.hpp"
 #include "options.hpp"
+#include "processes.hpp"
 
 #include <panelrad/io/scene_file.hpp>
 #include <panelrad/io/text_output.hpp>
@@ -102,6 +103,9 @@ void print_summary(const ViewFactors& v, const std::string& scene_path, const st
 
 int run_view_factors(const CLI::App& app, ViewFactorsCommandLine& line) {
   if (app.count("SCENE") == 0) throw UsageError("no scene given");
+  // One process computes the view factors (compute_view_factors shares no rows); under mpirun the
+  // other ranks have nothing to do.
+  if (!writes_outputs()) return 0;
   const std::string prefix =
       line.prefix.empty() ? std::filesystem::path(line.scene_path).stem().string() + "_viewfactors" : line.prefix;
   install_output_signal_handlers();
