@@ -35,11 +35,11 @@ const char* kViewFactorsUsage =
     "  with n <= N. The factors are also computed one level coarser and |F(L) - F(L-1)| is written as\n"
     "  their error estimate (--no-estimate: not). --reciprocal makes the matrix reciprocal (A_I F_IJ =\n"
     "  A_J F_JI) and closed (rows summing to 1 in an enclosed scene), as thermal models need, and says\n"
-    "  by how much it moved. --elements also writes PREFIX_elements.csv: per element its group, centroid,\n"
-    "  area and sky view factor. Writes PREFIX.csv (per group: area, F to every group,\n"
-    "  and 1 - sum_J F_IJ: the sky view factor of an open scene, the closure defect of an enclosed one),\n"
-    "  PREFIX_error.csv (the estimates) and PREFIX.npy (F as float64, numpy.load); PREFIX defaults to\n"
-    "  the scene's name with '_viewfactors' in the current directory. A summary goes to stdout.\n"
+    "  by how much it moved. Writes PREFIX.csv (per group: area, F to every group, and 1 - sum_J F_IJ:\n"
+    "  the sky view factor of an open scene, the closure defect of an enclosed one), PREFIX_error.csv\n"
+    "  (the estimates), PREFIX.npy (F as float64, numpy.load) and with --elements PREFIX_elements.csv\n"
+    "  (per element its group, centroid, area and sky view factor); PREFIX defaults to the scene's name\n"
+    "  with '_viewfactors' in the current directory. A summary goes to stdout.\n"
     "  Exit status: 0 written; 1 invalid input or failed run (nothing written); 2 usage error.\n";
 
 struct ViewFactorsCommandLine {

@@ -10,7 +10,6 @@
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
-#include <map>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -21,8 +20,8 @@ namespace panelrad::python {
 
 namespace {
 
-/// groups: "facet", "object", "material", or a sequence of one name per input facet (the groups in the order
-/// of their first facet).
+/// groups: "facet", "object", "material", or a sequence of one name per input facet
+/// (groups_by_name).
 SurfaceGroups surface_groups(const Scene& scene, py::handle groups) {
   if (py::isinstance<py::str>(groups)) {
     const std::string how = groups.cast<std::string>();
@@ -33,15 +32,19 @@ SurfaceGroups surface_groups(const Scene& scene, py::handle groups) {
   }
   if (!py::isinstance<py::sequence>(groups))
     throw py::type_error("groups: expected 'facet', 'object', 'material' or a sequence of one name per facet");
-  SurfaceGroups g;
-  std::map<std::string, geometry::Index> index;
+  std::vector<std::string> names;
   for (const py::handle item : groups.cast<py::sequence>()) {
     if (!py::isinstance<py::str>(item)) throw py::type_error("groups: every entry must be a str (a group's name)");
-    const auto [it, added] = index.try_emplace(item.cast<std::string>(), static_cast<geometry::Index>(g.names.size()));
-    if (added) g.names.push_back(it->first);
-    g.of_facet.push_back(it->second);
+    names.push_back(item.cast<std::string>());
   }
-  return g;
+  return groups_by_name(names);
+}
+
+/// `value` when the elements were kept (ViewFactorOptions::elements), else None.
+template <class T>
+std::optional<T> if_elements(const ViewFactors& v, T value) {
+  if (v.elements.sky.size() == 0) return std::nullopt;
+  return value;
 }
 
 }  // namespace
@@ -95,33 +98,23 @@ the radiation leaving group I diffusely that reaches group J directly.
       .def_property_readonly("seconds", [](const ViewFactors& v) { return v.seconds; })
       .def_property_readonly(
           "element_sky",
-          [](const ViewFactors& v) -> std::optional<Eigen::VectorXd> {
-            if (v.elements.sky.size() == 0) return std::nullopt;
-            return v.elements.sky;
-          },
+          [](const ViewFactors& v) { return if_elements(v, v.elements.sky); },
           "With elements=True: per element of the finest level, 1 - (H 1)_i, its sky view factor (else None).")
       .def_property_readonly(
           "element_groups",
-          [](const ViewFactors& v) -> std::optional<std::vector<geometry::Index>> {
-            if (v.elements.sky.size() == 0) return std::nullopt;
-            return v.elements.group;
-          },
+          [](const ViewFactors& v) { return if_elements(v, v.elements.group); },
           "With elements=True: each element's group (an index into names), else None.")
       .def_property_readonly(
           "element_centroids",
-          [](const ViewFactors& v) -> std::optional<Eigen::MatrixX3d> {
-            if (v.elements.sky.size() == 0) return std::nullopt;
+          [](const ViewFactors& v) {
             Eigen::MatrixX3d c(static_cast<Eigen::Index>(v.elements.centroid.size()), 3);
             for (std::size_t i = 0; i < v.elements.centroid.size(); ++i) c.row(static_cast<Eigen::Index>(i)) = v.elements.centroid[i];
-            return c;
+            return if_elements(v, c);
           },
           "With elements=True: each element's collocation point (n x 3), else None.")
       .def_property_readonly(
           "element_areas",
-          [](const ViewFactors& v) -> std::optional<Eigen::VectorXd> {
-            if (v.elements.sky.size() == 0) return std::nullopt;
-            return v.elements.area;
-          },
+          [](const ViewFactors& v) { return if_elements(v, v.elements.area); },
           "With elements=True: each element's area, else None.")
       .def_property_readonly("correction", [](const ViewFactors& v) { return v.correction; },
                              "With reciprocal=True, max |F - F as computed|; else 0.")

@@ -89,9 +89,6 @@ SurfaceGroups groups_by_facet(const Scene& scene) {
   return g;
 }
 
-namespace {
-
-/// One group per distinct name of `per_facet`, in the order of first use; "" is "default".
 SurfaceGroups groups_by_name(const std::vector<std::string>& per_facet) {
   SurfaceGroups g;
   std::map<std::string, Index> index;
@@ -103,8 +100,6 @@ SurfaceGroups groups_by_name(const std::vector<std::string>& per_facet) {
   }
   return g;
 }
-
-}  // namespace
 
 SurfaceGroups groups_by_material(const Scene& scene) {
   if (scene.facet_material().empty())

@@ -1,9 +1,10 @@
 #pragma once
-// Mesh input: OFF, OBJ and STL files (STL: read_stl below). Vertices are shared: vertices with exactly the same coordinates
-// are merged (so a "triangle soup" works) and vertices used by no face are dropped, each reported
-// in `notes`. Input face i becomes facet i, and TriangleMesh::facet_line[i] is the line where it is
-// written; every message names it "input face i (line L)", i counted from 0 in both formats (as
-// facet ids everywhere, e.g. in a scene's JSON sidecar).
+// Mesh input: OFF, OBJ and STL files (STL: read_stl below). Vertices are shared: vertices with
+// exactly the same coordinates are merged (so a "triangle soup" works) and vertices used by no
+// face are dropped, each reported in `notes`. Input face i becomes facet i, and
+// TriangleMesh::facet_line[i] is the line where it is written; every message names it "input face
+// i (line L)", i counted from 0 in every format (as facet ids everywhere, e.g. in a scene's JSON
+// sidecar).
 //
 // Faces are triangulated on their own corners, no point added, every triangle running in the face's
 // rotational direction (validation may re-triangulate convex meshes exactly, see validation.hpp).

@@ -36,6 +36,10 @@ SurfaceGroups groups_by_material(const Scene& scene);
 /// (TriangleMesh::facet_group), in the order of first use; a facet before any name is in the group
 /// "default". std::invalid_argument when the file names no object.
 SurfaceGroups groups_by_object(const Scene& scene);
+/// One group per distinct name of `per_facet` (a name per input facet), in the order of first use;
+/// an empty name is the group "default". groups_by_material and groups_by_object are this on the
+/// file's names.
+SurfaceGroups groups_by_name(const std::vector<std::string>& per_facet);
 /// What is wrong with `groups` for `scene` ("" when nothing): a facet count that differs, a
 /// group index out of range, a name empty or given twice, a group with no facet.
 std::string groups_problem(const Scene& scene, const SurfaceGroups& groups);
