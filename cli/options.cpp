@@ -1,5 +1,7 @@
 #include "options.hpp"
 
+#include <panelrad/operator/near_field.hpp>
+#include <panelrad/operator/operator_factory.hpp>
 #include <panelrad/quadrature/triangle_rules.hpp>
 #include <panelrad/support/resources.hpp>
 
@@ -7,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <limits>
 #include <stdexcept>
 #include <utility>
@@ -120,6 +123,43 @@ CLI::Validator one_of(std::vector<std::string> names) {
 
 void set_usage(CLI::App& app, const char* usage) {
   app.formatter_fn([usage](const CLI::App*, std::string, CLI::AppFormatMode) { return std::string(usage); });
+}
+
+void add_operator_options(CLI::App& app, SolveOptions& o) {
+  CLI::Option* levels = app.add_option("--levels", o.level)->type_name("L")->transform(level_number());
+  CLI::Option* max_elements =
+      app.add_option("--max-elements", o.max_elements)->type_name("N")->transform(integer_in(1, 1 << 30));
+  levels->excludes(max_elements);
+  app.add_option_function<std::string>("--method", [&o](const std::string& v) { o.op.method = parse_operator_method(v); })
+      ->type_name("auto|dense|fast")
+      ->check(one_of({"auto", "dense", "fast"}));
+  app.add_option("--eta", o.op.eta)->type_name("E")->transform(number_in(1e-3, 0.99));
+  app.add_option("--degree", o.op.degree)->type_name("M")->transform(integer_in(0, 12));
+  app.add_option_function<std::string>("--near",
+                                       [&o](const std::string& v) { o.op.near.rule = parse_near_rule(v); })
+      ->type_name("exact|quadrature")
+      ->check(one_of({"exact", "quadrature"}));
+  app.add_option("--mu", o.op.near.mu)->type_name("K")->transform(integer_in(0, 6));
+  app.add_option_function<std::string>("--visibility",
+                                       [&o](const std::string& v) { o.visibility = parse_visibility(v); })
+      ->type_name("auto|occluded")
+      ->check(one_of({"auto", "occluded"}));
+}
+
+void check_operator_options(const CLI::App& app, const SolveOptions& o) {
+  const bool manual = app.count("--eta") + app.count("--degree") + app.count("--near") + app.count("--mu") > 0;
+  if (manual && o.op.method == OperatorMethod::automatic)
+    throw UsageError("--eta, --degree, --near and --mu need --method dense or fast");
+}
+
+void check_prefix(const std::string& prefix) {
+  // An empty name ("d/") or one starting with '.' (".", "..", "out/.") makes hidden files.
+  const std::string name = std::filesystem::path(prefix).filename().string();
+  if (name.empty() || name[0] == '.')
+    throw UsageError("--out '" + prefix + "': the file name part " +
+                     (name.empty() ? std::string("is empty") : "'" + name + "' starts with '.'") +
+                     ", so the outputs would be hidden files such as '" + prefix +
+                     ".csv'; give a prefix such as DIR/NAME");
 }
 
 }  // namespace panelrad::cli

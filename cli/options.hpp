@@ -4,6 +4,8 @@
 // "--eta: needs a number in [0.001, 0.99], got '2'". Their descriptions are empty: the usage texts
 // (set_usage) document the options, and CLI11 adds a description to the value's name in its
 // messages ("--levels: 1 required L missing").
+#include <panelrad/solve/radiosity_solver.hpp>
+
 #include <CLI/CLI.hpp>
 
 #include <stdexcept>
@@ -46,5 +48,16 @@ CLI::Validator one_of(std::vector<std::string> names);
 
 /// The sub-command's usage text is its help (--help, and after a usage error).
 void set_usage(CLI::App& app, const char* usage);
+
+/// The options of the discretization and the operator that `solve` and `viewfactors` share, into
+/// `o`: --levels L | --max-elements N, --method, --eta, --degree, --near, --mu, --visibility.
+void add_operator_options(CLI::App& app, SolveOptions& o);
+/// What those options cannot check one by one (a UsageError): --eta, --degree, --near and --mu
+/// need --method dense or fast.
+void check_operator_options(const CLI::App& app, const SolveOptions& o);
+
+/// The outputs PREFIX.csv, ... beside PREFIX: its file name part must be a plain name, not empty
+/// and not starting with '.' (hidden files); a UsageError otherwise.
+void check_prefix(const std::string& prefix);
 
 }  // namespace panelrad::cli

@@ -56,17 +56,6 @@ std::string default_prefix(const std::string& scene) {
   return std::filesystem::path(scene).stem().string() + "_radiosity";
 }
 
-/// The outputs are PREFIX.csv, PREFIX.ply, ... beside PREFIX: its file name part must be a plain
-/// name. An empty one ("d/") or one starting with '.' (".", "..", "out/.") makes hidden files.
-void check_prefix(const std::string& prefix) {
-  const std::string name = std::filesystem::path(prefix).filename().string();
-  if (name.empty() || name[0] == '.')
-    throw UsageError("--out '" + prefix + "': the file name part " +
-                     (name.empty() ? std::string("is empty") : "'" + name + "' starts with '.'") +
-                     ", so the outputs would be hidden files such as '" + prefix +
-                     ".csv'; give a prefix such as DIR/NAME");
-}
-
 /// --formats: a comma-separated list of at least one format; an empty entry ("", ",", "csv,")
 /// is an error, not "write nothing".
 std::string check_formats(const std::string& formats, std::set<std::string>* wanted) {
@@ -120,10 +109,7 @@ void add_solve_options(CLI::App& app, SolveCommandLine& line) {
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);  // repeated: the last counts
   SolveOptions& o = line.o;
   app.add_option("SCENE", line.scene_path);  // checked after parsing, so an unknown option is said first
-  CLI::Option* levels = app.add_option("--levels", o.level)->type_name("L")->transform(level_number());
-  CLI::Option* max_elements =
-      app.add_option("--max-elements", o.max_elements)->type_name("N")->transform(integer_in(1, 1 << 30));
-  levels->excludes(max_elements);
+  add_operator_options(app, o);
   app.add_option("--out", line.prefix)->type_name("PREFIX")->check([](const std::string& prefix) {
     return prefix.empty() ? std::string("the prefix is empty") : std::string();
   });
@@ -131,24 +117,10 @@ void add_solve_options(CLI::App& app, SolveCommandLine& line) {
   app.add_option("--formats", line.formats)->type_name("csv,ply,vtk,png")->check([](const std::string& formats) {
     return check_formats(formats, nullptr);
   });
-  app.add_option_function<std::string>("--method", [&o](const std::string& v) { o.op.method = parse_operator_method(v); })
-      ->type_name("auto|dense|fast")
-      ->check(one_of({"auto", "dense", "fast"}));
-  app.add_option("--eta", o.op.eta)->type_name("E")->transform(number_in(1e-3, 0.99));
-  app.add_option("--degree", o.op.degree)->type_name("M")->transform(integer_in(0, 12));
-  app.add_option_function<std::string>("--near",
-                                       [&o](const std::string& v) { o.op.near.rule = parse_near_rule(v); })
-      ->type_name("exact|quadrature")
-      ->check(one_of({"exact", "quadrature"}));
-  app.add_option("--mu", o.op.near.mu)->type_name("K")->transform(integer_in(0, 6));
   app.add_option_function<std::string>("--solver", [&o](const std::string& v) { o.solver.kind = parse_solver(v); })
       ->type_name("auto|neumann|gmres")
       ->check(one_of({"auto", "neumann", "gmres"}));
   app.add_option("--tol", o.solver.tolerance)->type_name("T|auto")->transform(tolerance_in(1e-15, 0.5));
-  app.add_option_function<std::string>("--visibility",
-                                       [&o](const std::string& v) { o.visibility = parse_visibility(v); })
-      ->type_name("auto|occluded")
-      ->check(one_of({"auto", "occluded"}));
   app.add_option("--threads", line.threads)->type_name("T")->transform(thread_count());
   app.add_option_function<std::string>("--view", [&line](const std::string& v) {
        geometry::Vec3 d;
@@ -170,9 +142,7 @@ void add_solve_options(CLI::App& app, SolveCommandLine& line) {
 /// The combinations of options, once the command line is parsed.
 void check_solve_options(const CLI::App& app, SolveCommandLine& line) {
   if (app.count("SCENE") == 0) throw UsageError("no scene given");
-  const bool manual = app.count("--eta") + app.count("--degree") + app.count("--near") + app.count("--mu") > 0;
-  if (manual && line.o.op.method == OperatorMethod::automatic)
-    throw UsageError("--eta, --degree, --near and --mu need --method dense or fast");
+  check_operator_options(app, line.o);
   (void)check_formats(line.formats, &line.wanted);  // checked by the option's validator
   if (line.prefix.empty()) line.prefix = default_prefix(line.scene_path);
   check_prefix(line.prefix);  // given or derived from SCENE

@@ -7,7 +7,6 @@
 #include <panelrad/io/scene_file.hpp>
 #include <panelrad/io/text_output.hpp>
 #include <panelrad/io/view_factor_output.hpp>
-#include <panelrad/operator/auto_parameters.hpp>
 #include <panelrad/support/resources.hpp>
 #include <panelrad/viewfactors/view_factors.hpp>
 
@@ -24,7 +23,8 @@ namespace {
 
 const char* kViewFactorsUsage =
     "usage: panelrad viewfactors SCENE [--groups facet|object|material] [--levels L | --max-elements N]\n"
-    "                            [--method auto|dense|fast] [--eta E] [--degree M] [--visibility auto|occluded]\n"
+    "                            [--method auto|dense|fast] [--eta E] [--degree M] [--near exact|quadrature]\n"
+    "                            [--mu K] [--visibility auto|occluded]\n"
     "                            [--no-estimate] [--reciprocal] [--elements] [--out PREFIX] [--threads T] [--quiet]\n"
     "  SCENE: an OFF, OBJ or STL mesh (any set of planar polygons that do not cross, as `solve` takes).\n"
     "  F_IJ is the fraction of the radiation leaving group I diffusely that reaches group J directly,\n"
@@ -51,25 +51,12 @@ struct ViewFactorsCommandLine {
 
 void add_view_factor_options(CLI::App& app, ViewFactorsCommandLine& line) {
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
-  SolveOptions& o = line.o.solve;
   app.add_option("SCENE", line.scene_path);
-  CLI::Option* levels = app.add_option("--levels", o.level)->type_name("L")->transform(level_number());
-  CLI::Option* max_elements =
-      app.add_option("--max-elements", o.max_elements)->type_name("N")->transform(integer_in(1, 1 << 30));
-  levels->excludes(max_elements);
+  add_operator_options(app, line.o.solve);
   app.add_option("--groups", line.groups)->type_name("facet|object|material")->check(one_of({"facet", "object", "material"}));
   app.add_option("--out", line.prefix)->type_name("PREFIX")->check([](const std::string& prefix) {
     return prefix.empty() ? std::string("the prefix is empty") : std::string();
   });
-  app.add_option_function<std::string>("--method", [&o](const std::string& v) { o.op.method = parse_operator_method(v); })
-      ->type_name("auto|dense|fast")
-      ->check(one_of({"auto", "dense", "fast"}));
-  app.add_option("--eta", o.op.eta)->type_name("E")->transform(number_in(1e-3, 0.99));
-  app.add_option("--degree", o.op.degree)->type_name("M")->transform(integer_in(0, 12));
-  app.add_option_function<std::string>("--visibility",
-                                       [&o](const std::string& v) { o.visibility = parse_visibility(v); })
-      ->type_name("auto|occluded")
-      ->check(one_of({"auto", "occluded"}));
   app.add_flag("--no-estimate", line.no_estimate);
   app.add_flag("--reciprocal", line.o.reciprocal);
   app.add_flag("--elements", line.o.elements);
@@ -103,11 +90,13 @@ void print_summary(const ViewFactors& v, const std::string& scene_path, const st
 
 int run_view_factors(const CLI::App& app, ViewFactorsCommandLine& line) {
   if (app.count("SCENE") == 0) throw UsageError("no scene given");
+  check_operator_options(app, line.o.solve);
+  if (line.prefix.empty()) line.prefix = std::filesystem::path(line.scene_path).stem().string() + "_viewfactors";
+  check_prefix(line.prefix);
   // One process computes the view factors (compute_view_factors shares no rows); under mpirun the
   // other ranks have nothing to do.
   if (!writes_outputs()) return 0;
-  const std::string prefix =
-      line.prefix.empty() ? std::filesystem::path(line.scene_path).stem().string() + "_viewfactors" : line.prefix;
+  const std::string& prefix = line.prefix;
   install_output_signal_handlers();
   set_threads(line.threads);
   ViewFactorOptions o = line.o;

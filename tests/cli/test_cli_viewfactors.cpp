@@ -171,6 +171,12 @@ TEST_F(CliViewFactors, RefusalsWriteNothing) {
   EXPECT_EQ(r.status, 2) << r.output;
   r = run("viewfactors " + path("cube.obj") + " --levels 1 --max-elements 10");
   EXPECT_EQ(r.status, 2) << r.output;
+  r = run("viewfactors " + path("cube.obj") + " --eta 0.3");  // manual parameters need a method
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("need --method dense or fast"), std::string::npos) << r.output;
+  r = run("viewfactors " + path("cube.obj") + " --out " + path(".hidden"));
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_FALSE(fs::exists(path(".hidden.csv")));
 }
 
 }  // namespace
