@@ -32,13 +32,16 @@ const char* kSolveUsage =
     "usage: panelrad solve SCENE [--levels L | --max-elements N] [--out PREFIX] [--materials JSON]\n"
     "                      [--formats csv,ply,vtk,png] [--method auto|dense|fast] [--eta E] [--degree M]\n"
     "                      [--near exact|quadrature] [--mu K] [--solver auto|neumann|gmres] [--tol T|auto]\n"
-    "                      [--visibility auto|occluded] [--view X,Y,Z] [--up X,Y,Z] [--threads T] [--quiet]\n"
+    "                      [--visibility auto|occluded] [--environment U[,U..]] [--view X,Y,Z] [--up X,Y,Z]\n"
+    "                      [--threads T] [--quiet]\n"
     "  SCENE: an OBJ whose MTL gives Kd (reflectivity rho) and Ke (emission E) per face through usemtl,\n"
     "  or an OFF with a JSON sidecar (SCENE with extension .json, or --materials) giving rho and E per\n"
     "  facet. Any set of planar polygons that do not cross: closed bodies (a room is seen from inside,\n"
     "  the bodies in it from outside) and open surfaces (front side counter-clockwise). The line of\n"
     "  sight V(P,Q) is computed unless the scene is proven convex (--visibility occluded: always).\n"
-    "  Every colour channel is solved with one operator. --levels L refines L times (n = 4^L n0);\n"
+  "  Every colour channel is solved with one operator. --environment: the radiosity of the sky an\n"
+    "  open scene sees where no surface covers a point's hemisphere (one value, or one per channel;\n"
+    "  default 0, black). --levels L refines L times (n = 4^L n0);\n"
     "  --max-elements N (default 20000) takes the largest level with n <= N. Writes PREFIX.csv\n"
     "  (per-element radiosity), PREFIX.ply (per-face colours), PREFIX.vtk (ParaView) and PREFIX.png\n"
     "  (a cut-away picture seen from --view, the direction from the scene towards the viewer;\n"
@@ -80,6 +83,7 @@ struct SolveCommandLine {
   std::set<std::string> wanted;  // from formats
   std::optional<geometry::Vec3> view;  // --view: the PNG's direction towards the viewer
   std::optional<geometry::Vec3> up;  // --up: the PNG's upward direction
+  std::vector<double> environment;     // --environment: one value, or one per channel
 };
 
 /// --view X,Y,Z: three finite numbers, not all 0; what is wrong, or "".
@@ -136,6 +140,21 @@ void add_solve_options(CLI::App& app, SolveCommandLine& line) {
      })
       ->type_name("X,Y,Z")
       ->check([](const std::string& v) { return view_problem(v, nullptr); });
+  app.add_option("--environment", line.environment)
+      ->type_name("U[,U..]")
+      ->delimiter(',')
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      ->check([](const std::string& v) {
+        try {
+          std::size_t used = 0;
+          const double u = std::stod(v, &used);
+          if (used != v.size()) return "'" + v + "' is not a number";
+          const std::string problem = emission_problem(u);
+          return problem.empty() ? std::string() : "the environment's radiosity " + v + " " + problem;
+        } catch (const std::exception&) {
+          return "'" + v + "' is not a number";
+        }
+      });
   app.add_flag("--quiet", line.quiet);
 }
 
@@ -148,13 +167,27 @@ void check_solve_options(const CLI::App& app, SolveCommandLine& line) {
   check_prefix(line.prefix);  // given or derived from SCENE
 }
 
+/// --environment: one value for every channel, or one per channel of the scene.
+void set_environment(const std::vector<double>& values, const std::string& scene_path, Scene& scene) {
+  if (values.empty()) return;
+  const std::size_t channels = scene.num_channels();
+  if (values.size() != 1 && values.size() != channels)
+    throw std::runtime_error(scene_path + ": --environment gives " + std::to_string(values.size()) +
+                             " values; the scene has " + std::to_string(channels) + " channel" +
+                             (channels > 1 ? "s" : "") + " (give one value, or one per channel)");
+  for (std::size_t c = 0; c < channels; ++c) scene.set_environment(values[values.size() == 1 ? 0 : c], c);
+}
+
 /// The scene, with what loading did on stderr (unless quiet), and a note when --max-elements is
 /// below n0 (said even when quiet: the run then does not do what was asked). Only the process
 /// that writes the outputs says anything.
 Scene read_scene(const SolveCommandLine& line, bool max_given, bool writer) {
   LoadOptions load;
   load.materials_path = line.materials;
-  const Scene scene = load_scene(line.scene_path, load);  // errors: exit 1 (main)
+  Scene scene = load_scene(line.scene_path, load);  // errors: exit 1 (main)
+  set_environment(line.environment, line.scene_path, scene);
+  if (!line.environment.empty() && scene.enclosed() && writer && !line.quiet)
+    std::cerr << "panelrad solve: note: the scene is enclosed, so no point sees the environment (--environment)\n";
   if (!line.quiet && writer)
     for (const std::string& note : scene.notes()) std::cerr << "panelrad solve: note: " << note << "\n";
   if (writer && line.o.level < 0 && static_cast<long long>(scene.mesh().triangles.size()) > line.o.max_elements)
@@ -190,6 +223,15 @@ void print_energy_balance(const SceneSolution& s) {
     std::printf("energy balance: the scene is enclosed (no light leaves it), but the back sides of its one-sided "
                 "surfaces take the light that falls on them, so emitted = absorbed + taken by back sides; back-side "
                 "fraction:");
+    fractions();
+    std::printf(";");
+  } else if (std::any_of(s.channels.begin(), s.channels.end(), [](const ChannelSolution& c) { return c.environment_in > 0; })) {
+    std::printf("energy balance: the scene is open, so emitted + arriving from the environment = absorbed + escaped; "
+                "environment's share of what enters:");
+    for (const ChannelSolution& c : s.channels)
+      std::printf(" %s %.4f", c.name.c_str(),
+                  c.emitted + c.environment_in > 0 ? c.environment_in / (c.emitted + c.environment_in) : 0.0);
+    std::printf("; escaped fraction:");
     fractions();
     std::printf(";");
   } else {

@@ -10,10 +10,12 @@
 #include <panelrad/support/resources.hpp>
 #include <panelrad/viewfactors/view_factors.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,12 +27,16 @@ const char* kViewFactorsUsage =
     "usage: panelrad viewfactors SCENE [--groups facet|object|material] [--levels L | --max-elements N]\n"
     "                            [--method auto|dense|fast] [--eta E] [--degree M] [--near exact|quadrature]\n"
     "                            [--mu K] [--visibility auto|occluded]\n"
-    "                            [--no-estimate] [--reciprocal] [--elements] [--out PREFIX] [--threads T] [--quiet]\n"
+    "                            [--no-estimate] [--reciprocal] [--two-sided GROUP]... [--elements]\n"
+    "                            [--elements-to GROUP]...\n"
+    "                            [--out PREFIX] [--threads T] [--quiet]\n"
     "  SCENE: an OFF, OBJ or STL mesh (any set of planar polygons that do not cross, as `solve` takes).\n"
     "  F_IJ is the fraction of the radiation leaving group I diffusely that reaches group J directly,\n"
     "  the line of sight computed unless the scene is proven convex. --groups facet (default): every\n"
     "  input face its own group; object: the faces of one OBJ object or group (o, g) or ASCII STL solid;\n"
-    "  material: the faces of one OBJ material (usemtl; the OBJ's MTL is read).\n"
+    "  material: the faces of one OBJ material (usemtl; the OBJ's MTL is read). A sheet is one-sided,\n"
+    "  its front side from the file's winding; --two-sided GROUP (repeatable) gives the group's back\n"
+    "  side as a group of its own, 'GROUP (back)'.\n"
     "  --levels L refines L times (n = 4^L n0); --max-elements N (default 20000) takes the largest level\n"
     "  with n <= N. The factors are also computed one level coarser and |F(L) - F(L-1)| is written as\n"
     "  their error estimate (--no-estimate: not). --reciprocal makes the matrix reciprocal (A_I F_IJ =\n"
@@ -38,12 +44,14 @@ const char* kViewFactorsUsage =
     "  by how much it moved. Writes PREFIX.csv (per group: area, F to every group, and 1 - sum_J F_IJ:\n"
     "  the sky view factor of an open scene, the closure defect of an enclosed one), PREFIX_error.csv\n"
     "  (the estimates), PREFIX.npy (F as float64, numpy.load) and with --elements PREFIX_elements.csv\n"
-    "  (per element its group, centroid, area and sky view factor); PREFIX defaults to the scene's name\n"
+    "  and PREFIX_elements.vtk (per element its group, centroid, area and sky view factor, and with\n"
+    "  --elements-to GROUP, repeatable, its view factor to that group); PREFIX defaults to the scene's name\n"
     "  with '_viewfactors' in the current directory. A summary goes to stdout.\n"
     "  Exit status: 0 written; 1 invalid input or failed run (nothing written); 2 usage error.\n";
 
 struct ViewFactorsCommandLine {
   std::string scene_path, prefix, groups = "facet";
+  std::vector<std::string> two_sided;  // --two-sided: groups whose back sides radiate too
   ViewFactorOptions o;
   bool no_estimate = false, quiet = false;
   int threads = 0;
@@ -59,7 +67,11 @@ void add_view_factor_options(CLI::App& app, ViewFactorsCommandLine& line) {
   });
   app.add_flag("--no-estimate", line.no_estimate);
   app.add_flag("--reciprocal", line.o.reciprocal);
+  app.add_option("--two-sided", line.two_sided)->type_name("GROUP")->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   app.add_flag("--elements", line.o.elements);
+  app.add_option("--elements-to", line.o.element_targets)
+      ->type_name("GROUP")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   app.add_option("--threads", line.threads)->type_name("T")->transform(thread_count());
   app.add_flag("--quiet", line.quiet);
 }
@@ -104,19 +116,30 @@ int run_view_factors(const CLI::App& app, ViewFactorsCommandLine& line) {
   if (!line.quiet) o.solve.progress = [](const std::string& s) { std::cerr << "panelrad viewfactors: " << s << "\n"; };
   LoadOptions load;
   load.geometry_only = line.groups != "material";  // the mesh alone; materials only to group by them
-  const Scene scene = load_scene(line.scene_path, load);  // errors: exit 1 (main)
-  if (!line.quiet)
-    for (const std::string& note : scene.notes()) std::cerr << "panelrad viewfactors: note: " << note << "\n";
+  std::optional<Scene> scene = load_scene(line.scene_path, load);  // errors: exit 1 (main)
   SurfaceGroups groups;
   try {
-    groups = line.groups == "facet"    ? groups_by_facet(scene)
-             : line.groups == "object" ? groups_by_object(scene)
-                                       : groups_by_material(scene);
+    groups = line.groups == "facet"    ? groups_by_facet(*scene)
+             : line.groups == "object" ? groups_by_object(*scene)
+                                       : groups_by_material(*scene);
+    if (!line.two_sided.empty()) {
+      TwoSidedScene two = with_back_sides(*scene, groups, line.two_sided);
+      scene.emplace(std::move(two.scene));
+      groups = std::move(two.groups);
+    }
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(line.scene_path + ": " + e.what());
   }
-  for (const std::string& path : view_factor_paths(prefix, o.estimate_error, o.elements)) check_output_path(path);
-  const ViewFactors v = compute_view_factors(scene, groups, o);
+  if (!line.quiet)
+    for (const std::string& note : scene->notes()) std::cerr << "panelrad viewfactors: note: " << note << "\n";
+  for (const std::string& target : o.element_targets)
+    if (std::find(groups.names.begin(), groups.names.end(), target) == groups.names.end())
+      throw std::runtime_error(line.scene_path + ": --elements-to '" + target + "' is not a group (--groups " +
+                               line.groups + " gives " + std::to_string(groups.names.size()) + ", the first '" +
+                               groups.names.front() + "')");
+  const bool with_elements = o.elements || !o.element_targets.empty();
+  for (const std::string& path : view_factor_paths(prefix, o.estimate_error, with_elements)) check_output_path(path);
+  const ViewFactors v = compute_view_factors(*scene, groups, o);
   const std::vector<std::string> written = write_view_factors(v, prefix);
   print_summary(v, line.scene_path, line.groups);
   for (const std::string& f : written) std::printf("wrote %s\n", f.c_str());

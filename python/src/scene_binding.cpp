@@ -206,6 +206,22 @@ ArgumentTypeError (a TypeError).
           "The emission E per facet (the light a surface gives off itself, the E of u - K u = E), as "
           "set_reflectivity; ArgumentError for E negative, not finite or subnormal.")
       .def(
+          "set_environment",
+          [](Scene& s, double radiosity, py::handle channel) {
+            if (channel.is_none()) {
+              for (std::size_t c = 0; c < s.num_channels(); ++c) s.set_environment(radiosity, c);
+            } else {
+              s.set_environment(radiosity, channel_index(s, channel));
+            }
+          },
+          py::arg("radiosity"), py::arg("channel") = py::none(),
+          "The environment's radiosity (the sky of an open scene), seen where no front side covers a point's "
+          "hemisphere: u - K u = E + rho u_env s. channel None sets every channel; 0 (the default) is black. "
+          "Not seen in an enclosed scene. ArgumentError as for E.")
+      .def(
+          "environment", [](const Scene& s, py::handle c) { return s.environment(channel_index(s, c)); },
+          py::arg("channel") = 0, "The environment's radiosity in the channel.")
+      .def(
           "reflectivity", [](const Scene& s, py::handle c) { return facet_values(s, Quantity::reflectivity, c); },
           py::arg("channel") = 0, "rho per facet of the channel (a copy), or None when given as a function.")
       .def(

@@ -72,6 +72,9 @@ Arrays are read-only views.
                              "Non-empty: this channel's data equal that channel's, whose solution was copied.")
       .def_property_readonly("emitted", [](const ChannelHandle& c) { return c.channel().emitted; })
       .def_property_readonly("absorbed", [](const ChannelHandle& c) { return c.channel().absorbed; })
+      .def_property_readonly(
+          "environment_in", [](const ChannelHandle& c) { return c.channel().environment_in; },
+          "The environment's power arriving, sum A_i u_env s_i (0 without an environment).")
       .def_property_readonly("energy_mismatch", [](const ChannelHandle& c) { return c.channel().energy_mismatch; })
       .def_property_readonly("escaped", [](const ChannelHandle& c) { return c.channel().escaped; },
                              "The fraction of the light that reaches no front side (leaves the scene, or falls on "

@@ -116,6 +116,11 @@ the radiation leaving group I diffusely that reaches group J directly.
           "element_areas",
           [](const ViewFactors& v) { return if_elements(v, v.elements.area); },
           "With elements=True: each element's area, else None.")
+      .def_property_readonly(
+          "element_factors",
+          [](const ViewFactors& v) { return if_elements(v, v.elements.to); },
+          "With elements_to: per element its view factor to each of those groups (n x len(elements_to), "
+          "columns in their order), else None.")
       .def_property_readonly("correction", [](const ViewFactors& v) { return v.correction; },
                              "With reciprocal=True, max |F - F as computed|; else 0.")
       .def(
@@ -126,7 +131,8 @@ the radiation leaving group I diffusely that reaches group J directly.
             return write_view_factors(v, p);
           },
           py::arg("prefix"),
-          "Writes PREFIX.csv, PREFIX_error.csv (with the estimates) and PREFIX.npy, all or none; returns the paths.")
+          "Writes PREFIX.csv, PREFIX_error.csv (with the estimates), PREFIX.npy and, with the elements kept, "
+          "PREFIX_elements.csv and PREFIX_elements.vtk, all or none; returns the paths.")
       .def("__repr__", [](const ViewFactors& v) {
         return "<panelrad.ViewFactors: " + std::to_string(v.names.size()) + " groups, level " + std::to_string(v.level) +
                ", n " + std::to_string(v.n) + ", " + v.method + ">";
@@ -135,7 +141,7 @@ the radiation leaving group I diffusely that reaches group J directly.
   m.def(
       "view_factors",
       [](std::shared_ptr<Scene> scene, py::object groups, bool estimate_error, bool reciprocal, bool elements,
-         int block_columns,
+         std::vector<std::string> elements_to, std::vector<std::string> two_sided, int block_columns,
          std::optional<int> level,
          long max_elements, double accuracy, std::string method, std::optional<double> eta, std::optional<int> degree,
          std::optional<std::string> near, std::optional<int> mu, std::string visibility, std::optional<int> threads,
@@ -148,13 +154,17 @@ the radiation leaving group I diffusely that reaches group J directly.
         o.estimate_error = estimate_error;
         o.reciprocal = reciprocal;
         o.elements = elements;
+        o.element_targets = std::move(elements_to);
         o.block_columns = block_columns;
         const SurfaceGroups g = surface_groups(*scene, groups);
         py::gil_scoped_release release;
-        return std::make_shared<ViewFactors>(compute_view_factors(*scene, g, o));
+        if (two_sided.empty()) return std::make_shared<ViewFactors>(compute_view_factors(*scene, g, o));
+        const TwoSidedScene two = with_back_sides(*scene, g, two_sided);
+        return std::make_shared<ViewFactors>(compute_view_factors(two.scene, two.groups, o));
       },
       py::arg("scene"), py::arg("groups") = "facet", py::kw_only(), py::arg("estimate_error") = true,
       py::arg("reciprocal") = false, py::arg("elements") = false,
+      py::arg("elements_to") = std::vector<std::string>{}, py::arg("two_sided") = std::vector<std::string>{},
       py::arg("block_columns") = 8, py::arg("level") = py::none(), py::arg("max_elements") = 20000,
       py::arg("accuracy") = 0.05, py::arg("method") = "auto", py::arg("eta") = py::none(), py::arg("degree") = py::none(),
       py::arg("near") = py::none(), py::arg("mu") = py::none(), py::arg("visibility") = "auto",
@@ -167,7 +177,9 @@ computed unless the scene is proven convex), every group's indicator in block pr
 block_columns columns. With estimate_error the factors are also computed one level coarser and
 |F(L) - F(L-1)| is the error estimate. With reciprocal the matrix is made reciprocal and closed
 (ViewFactors.correction: by how much it moved); with elements, every element's sky view factor
-(element_sky, element_groups, element_centroids, element_areas). The other keywords as Solver's. Returns a
+(element_sky, element_groups, element_centroids, element_areas), and with elements_to (group
+names) every element's view factor to each of them (element_factors). two_sided: group names
+whose back sides radiate too, each as a group 'NAME (back)' after the others. The other keywords as Solver's. Returns a
 ViewFactors.
 )doc");
 }

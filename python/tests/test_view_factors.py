@@ -119,4 +119,27 @@ def test_element_sky_of_an_open_scene():
     walled = panelrad.Scene(vertices, [[0, 1, 2], [0, 2, 3], [3, 2, 4], [3, 4, 5]], facets=[0, 0, 1, 1])
     vf = panelrad.view_factors(walled, level=2, elements=True, estimate_error=False)
     assert vf.element_sky.max() < 1 and vf.element_sky.min() > 0.5
+    vf = panelrad.view_factors(walled, level=2, elements_to=["facet 1", "facet 0"], estimate_error=False)
+    assert vf.element_factors.shape == (64, 2)
+    on_floor = np.asarray(vf.element_groups) == 0
+    np.testing.assert_array_equal(vf.element_factors[on_floor, 1], 0)  # the floor does not see itself
+    np.testing.assert_allclose(vf.element_factors.sum(axis=1) + vf.element_sky, 1, atol=1e-13)
+    mean = (vf.element_areas[on_floor] * vf.element_factors[on_floor, 0]).sum() / vf.area[0]
+    np.testing.assert_allclose(mean, vf.F[0, 1], rtol=1e-13)
     assert panelrad.view_factors(walled, level=1, estimate_error=False).element_sky is None
+
+
+def test_two_sided_sheet():
+    """A fin across a floor's middle: its back is the group 'facet 2 (back)', seen alike."""
+    vertices = np.array([[-1, 0, 0], [0, 0, 0], [0, 1, 0], [-1, 1, 0], [1, 0, 0], [1, 1, 0],
+                         [0, 1, 1], [0, 0, 1]], dtype=float)
+    triangles = [[0, 1, 2], [0, 2, 3], [1, 4, 5], [1, 5, 2], [1, 2, 6], [1, 6, 7]]
+    scene = panelrad.Scene(vertices, triangles, facets=[0, 0, 0, 0, 1, 1])
+    one = panelrad.view_factors(scene, level=3, estimate_error=False)
+    two = panelrad.view_factors(scene, level=3, estimate_error=False, two_sided=["facet 1"])
+    assert two.names == ["facet 0", "facet 1", "facet 1 (back)"]
+    np.testing.assert_allclose(two.F[0, 1], one.F[0, 1], rtol=1e-12)
+    np.testing.assert_allclose(two.F[0, 2], two.F[0, 1], rtol=1e-12)
+    assert two.F[1, 2] == 0 and two.F[2, 1] == 0
+    with pytest.raises(panelrad.ArgumentError, match="'roof' is not a group"):
+        panelrad.view_factors(scene, level=1, two_sided=["roof"])

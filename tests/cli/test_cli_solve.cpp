@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -247,6 +248,35 @@ TEST_F(CliSolve, OneSidedLampInARoomPrintsNoNegativeFraction) {
       EXPECT_LT(x, 0.05) << r.output;
     }
   }
+}
+
+// A floor alone under the sky: it sees nothing but the environment, so u = rho u_env exactly.
+TEST_F(CliSolve, EnvironmentLightsAnOpenScene) {
+  write("floor.obj", "mtllib floor.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nusemtl grey\nf 1 2 3 4\n");
+  write("floor.mtl", "newmtl grey\nKd 0.5 0.25 0.1\nKe 0 0 0\n");
+  const CliRun r = run("solve " + path("floor.obj") + " --levels 1 --method dense --formats csv --environment 2 --out " +
+                       path("f"), "2>/dev/null");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_CONTAINS(r.output, "emitted + arriving from the environment = absorbed + escaped");
+  const auto rows = read_csv(path("f.csv"));
+  ASSERT_EQ(rows.size(), 9u);
+  const auto column = [&rows](const std::string& name) {
+    return static_cast<std::size_t>(std::find(rows[0].begin(), rows[0].end(), name) - rows[0].begin());
+  };
+  ASSERT_LT(column("u_B"), rows[0].size());
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    EXPECT_NEAR(std::stod(rows[i][column("u_R")]), 1.0, 1e-12);
+    EXPECT_NEAR(std::stod(rows[i][column("u_B")]), 0.2, 1e-12);
+  }
+  // One value per channel; the count must match the scene's channels (exit 1, naming both).
+  const CliRun each = run("solve " + path("floor.obj") + " --levels 0 --method dense --formats csv --environment 2,4,8 "
+                          "--out " + path("g"), "2>/dev/null");
+  ASSERT_EQ(each.status, 0) << each.output;
+  const CliRun two = run("solve " + path("floor.obj") + " --levels 0 --formats csv --environment 1,2 --out " + path("h"));
+  EXPECT_EQ(two.status, 1) << two.output;
+  EXPECT_CONTAINS(two.output, "--environment gives 2 values; the scene has 3 channels");
+  EXPECT_EQ(run("solve " + path("floor.obj") + " --environment -1").status, 2);
+  EXPECT_EQ(run("solve " + path("floor.obj") + " --environment x").status, 2);
 }
 
 TEST_F(CliSolve, InvalidScenesAreRefusedNamingFileAndPlace) {

@@ -133,21 +133,59 @@ TEST_F(CliViewFactors, StlGroupedBySolid) {
   }
   stl << "endsolid walls\n";
   write("cube.stl", stl.str());
-  const CliRun r = run("viewfactors " + path("cube.stl") + " --groups object --levels 2 --no-estimate --elements --out " +
-                       path("s") + " --quiet");
+  const CliRun r = run("viewfactors " + path("cube.stl") + " --groups object --levels 2 --no-estimate --elements-to floor "
+                       "--out " + path("s") + " --quiet");
   ASSERT_EQ(r.status, 0) << r.output;
   // Every element's sky view factor: 12 triangles x 16 elements, 0 up to the far field in this
-  // closed cube.
+  // closed cube; and its factor to the floor: 0 on the floor, the rest of the hemisphere's share
+  // elsewhere.
   const auto elements = read_csv(path("s_elements.csv"));
   ASSERT_EQ(elements.size(), 1u + 12 * 16);
-  EXPECT_EQ(elements[0], (std::vector<std::string>{"element", "facet", "group", "x", "y", "z", "area", "sky"}));
-  for (std::size_t i = 1; i < elements.size(); ++i) EXPECT_LT(std::abs(std::stod(elements[i][7])), 1e-6) << i;
+  EXPECT_EQ(elements[0],
+            (std::vector<std::string>{"element", "facet", "group", "x", "y", "z", "area", "sky", "F_floor"}));
+  for (std::size_t i = 1; i < elements.size(); ++i) {
+    EXPECT_LT(std::abs(std::stod(elements[i][7])), 1e-6) << i;
+    const double to_floor = std::stod(elements[i][8]);
+    if (elements[i][2] == "floor") EXPECT_EQ(to_floor, 0.0) << i;
+    else EXPECT_GT(to_floor, 0.0) << i;
+  }
+  EXPECT_TRUE(fs::exists(path("s_elements.vtk")));
+  EXPECT_NE(r.output.find("wrote " + path("s_elements.vtk")), std::string::npos) << r.output;
+  const CliRun bad = run("viewfactors " + path("cube.stl") + " --groups object --levels 1 --elements-to roof --out " +
+                         path("b") + " --quiet");
+  EXPECT_EQ(bad.status, 1) << bad.output;
+  EXPECT_NE(bad.output.find("--elements-to 'roof' is not a group"), std::string::npos) << bad.output;
+  EXPECT_FALSE(fs::exists(path("b.csv")));
   const auto F = read_csv(path("s.csv"));
   ASSERT_EQ(F.size(), 3u);
   EXPECT_EQ(F[0], (std::vector<std::string>{"group", "area", "walls", "floor", "closure_defect"}));
   EXPECT_NEAR(std::stod(F[2][1]), 1.0, 1e-15);  // the floor's area
   EXPECT_NEAR(std::stod(F[2][2]), 1.0, 1e-12);  // the floor sees only the other faces
   EXPECT_EQ(std::stod(F[2][3]), 0.0);           // and not itself
+}
+
+// A fin across the middle of a floor, given as one sheet: --two-sided adds its back as the group
+// 'fin (back)', seen from the floor's other half as the front is from its own.
+TEST_F(CliViewFactors, TwoSidedSheetRadiatesFromBothSides) {
+  write("fin.obj",
+        "o floor\nv -1 0 0\nv 0 0 0\nv 0 1 0\nv -1 1 0\nv 1 0 0\nv 1 1 0\nf 1 2 3 4\nf 2 5 6 3\n"
+        "o fin\nv 0 0 1\nv 0 1 1\nf 2 3 8 7\n");
+  const CliRun one = run("viewfactors " + path("fin.obj") + " --groups object --levels 3 --no-estimate --out " +
+                         path("one") + " --quiet");
+  ASSERT_EQ(one.status, 0) << one.output;
+  const CliRun two = run("viewfactors " + path("fin.obj") + " --groups object --levels 3 --no-estimate --two-sided fin "
+                         "--out " + path("two") + " --quiet");
+  ASSERT_EQ(two.status, 0) << two.output;
+  const auto F1 = read_csv(path("one.csv")), F2 = read_csv(path("two.csv"));
+  ASSERT_EQ(F2[0], (std::vector<std::string>{"group", "area", "floor", "fin", "fin (back)", "sky"}));
+  ASSERT_EQ(F2.size(), 4u);
+  // The floor sees both sides alike (the fin stands in its middle), each as the one-sided fin.
+  EXPECT_NEAR(std::stod(F2[1][3]), std::stod(F1[1][3]), 1e-12);
+  EXPECT_NEAR(std::stod(F2[1][4]), std::stod(F2[1][3]), 1e-12);
+  EXPECT_GT(std::stod(F2[1][3]), 0.09);
+  const CliRun bad = run("viewfactors " + path("fin.obj") + " --groups object --two-sided roof --out " + path("b"));
+  EXPECT_EQ(bad.status, 1) << bad.output;
+  EXPECT_NE(bad.output.find("'roof' is not a group"), std::string::npos) << bad.output;
 }
 
 // Bad input: nothing written, exit 1 with the reason; usage errors exit 2.

@@ -183,6 +183,27 @@ TEST_F(SceneFile, OffJsonDefaultsIdsAndChannelArrays) {
   }
 }
 
+TEST_F(SceneFile, OffJsonEnvironmentPerChannelOrForAll) {
+  const Scene all = load_channel_scene(cube_off(R"({"channels": ["R", "G"], "default": {"rho": 0.5, "E": 1},
+    "environment": 0.25})"));
+  EXPECT_EQ(all.environment(0), 0.25);
+  EXPECT_EQ(all.environment(1), 0.25);
+  const Scene each = load_channel_scene(cube_off(R"({"channels": ["R", "G"], "default": {"rho": 0.5, "E": 1},
+    "environment": [0.5, 2]})"));
+  EXPECT_EQ(each.environment(0), 0.5);
+  EXPECT_EQ(each.environment(1), 2.0);
+  const Scene none = load_channel_scene(cube_off(R"({"default": {"rho": 0.5, "E": 1}})"));
+  EXPECT_EQ(none.environment(0), 0.0);
+  // A negative value, or the wrong count, names the file, the line and the channel.
+  const std::string negative = error_of(cube_off("{\"channels\": [\"R\", \"G\"],\n\"default\": {\"rho\": 0.5, \"E\": 1},\n"
+                                                 "\"environment\": [1, -2]}"));
+  EXPECT_NE(negative.find("cube.json:3:"), std::string::npos) << negative;
+  EXPECT_NE(negative.find("channel G"), std::string::npos) << negative;
+  const std::string count = error_of(cube_off(R"({"channels": ["R", "G"], "default": {"rho": 0.5, "E": 1},
+    "environment": [1, 2, 3]})"));
+  EXPECT_NE(count.find("environment has 3 values, expected 2"), std::string::npos) << count;
+}
+
 TEST_F(SceneFile, OffJsonOneChannelByDefaultAndExplicitSidecar) {
   write("cube.off", kCubeOff);
   std::string facets;

@@ -174,7 +174,8 @@ Writings write_triangles(const geometry::TriangleMesh& mesh, const std::vector<s
 
 // The room with a box written as OBJ, ASCII STL and binary STL, grouped by object (the OBJ's o, the
 // STL's solids; the binary STL's groups named per facet): OBJ and ASCII STL give the same triangles
-// and so the same matrix bit for bit; the binary STL's float32 corners move the box by up to 1e-8,
+// and so the same matrix bit for bit, welded against unwelded (the OBJ's corners are shared, the
+// STL's written per triangle and welded on reading); the binary STL's float32 corners move the box by up to 1e-8,
 // and its factors by less than 1e-6.
 TEST(ViewFactors, TheSameMatrixFromObjAndStl) {
   const geometry::TriangleMesh mesh = testing::room_with_box();
@@ -278,6 +279,45 @@ TEST(ViewFactors, SkyOfEveryElementOfAnOpenScene) {
   EXPECT_EQ(csv.substr(0, csv.find('\n')), "element,facet,group,x,y,z,area,sky");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 65);
   EXPECT_NE(csv.find("\n0,0,facet 0,"), std::string::npos);
+}
+
+// A fin standing across the middle of a floor: one-sided it is seen from one half of the floor;
+// two-sided (with_back_sides) its back is a group of its own, seen from the other half, each side
+// exactly as a rectangle perpendicular to the half floor it faces (Howell C-14): F_half,fin =
+// perpendicular_rectangles(1, 1, 1), so F_floor,side = F_half,fin / 2 and, by reciprocity,
+// F_side,floor = F_half,fin (the two halves of the floor have the fin's area). Within the error
+// estimate (level 4 against 3).
+TEST(ViewFactors, TwoSidedFinIsSeenFromBothHalvesOfTheFloor) {
+  geometry::TriangleMesh m;
+  m.source = "fin on a floor";
+  // The floor's two halves meet under the fin (its elements do not straddle the fin's foot, where
+  // the point factor jumps).
+  testing::add_polygon(m, {Vec3(-1, 0, 0), Vec3(0, 0, 0), Vec3(0, 1, 0), Vec3(-1, 1, 0)});  // floor, up
+  testing::add_polygon(m, {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)});
+  testing::add_polygon(m, {Vec3(0, 0, 0), Vec3(0, 1, 0), Vec3(0, 1, 1), Vec3(0, 0, 1)});  // fin, +x
+  m.facet_group = {"floor", "floor", "fin"};
+  const Scene one_sided(std::move(m));
+  const SurfaceGroups groups = groups_by_object(one_sided);
+  const TwoSidedScene two = with_back_sides(one_sided, groups, {"fin"});
+  ASSERT_EQ(two.groups.names, (std::vector<std::string>{"floor", "fin", "fin (back)"}));
+  EXPECT_EQ(two.scene.num_facets(), 4);
+  EXPECT_FALSE(two.scene.enclosed());
+  const double exact = perpendicular_rectangles(1, 1, 1);
+  const ViewFactors one = compute_view_factors(one_sided, groups, at_level(4));
+  const ViewFactors v = compute_view_factors(two.scene, two.groups, at_level(4));
+  ASSERT_EQ(v.F.rows(), 3);
+  EXPECT_NEAR(v.area[1], 1.0, 1e-15);
+  EXPECT_NEAR(v.area[2], 1.0, 1e-15);
+  for (const Index side : {1, 2}) {
+    EXPECT_NEAR(v.F(0, side), exact / 2, v.error(0, side) + 1e-12) << v.names[side];
+    EXPECT_NEAR(v.F(side, 0), exact, v.error(side, 0) + 1e-12) << v.names[side];
+    EXPECT_EQ(v.F(side, 3 - side), 0.0);  // one side does not see the other
+  }
+  // One-sided, the floor sees the fin's front only: the same factor as the two-sided front.
+  EXPECT_NEAR(one.F(0, 1), exact / 2, one.error(0, 1) + 1e-12);
+  EXPECT_THROW((void)with_back_sides(one_sided, groups, {"roof"}), std::invalid_argument);
+  EXPECT_THROW((void)with_back_sides(one_sided, groups, {"fin", "fin"}), std::invalid_argument);
+  EXPECT_THROW((void)with_back_sides(two.scene, two.groups, {"fin (back)"}), std::invalid_argument);
 }
 
 TEST(ViewFactors, BadGroupsAreRefusedByName) {

@@ -59,7 +59,7 @@ std::string sidecar_path(const std::string& path, const std::string& materials_p
 }
 
 /// Reads and parses the sidecar `file` of the OFF `path`: a JSON object with no duplicate key and
-/// only the keys "channels", "default", "facets".
+/// only the keys "channels", "default", "facets", "environment".
 Json read_sidecar(const std::string& file, const std::string& path, const TextReadOptions& options,
                   JsonLayout& layout) {
   Json doc;
@@ -76,10 +76,12 @@ Json read_sidecar(const std::string& file, const std::string& path, const TextRe
     }
   }
   if (!layout.duplicate.empty()) fail(file, layout.duplicate_line, layout.duplicate);
-  if (!doc.is_object()) fail(file, 0, "expected a JSON object with \"channels\", \"default\", \"facets\"");
+  if (!doc.is_object())
+    fail(file, 0, "expected a JSON object with \"channels\", \"default\", \"facets\", \"environment\"");
   for (const auto& [key, value] : doc.items())
-    if (key != "channels" && key != "default" && key != "facets")
-      fail(file, layout.line(key), "unknown key " + in_quotes(key) + " (expected \"channels\", \"default\", \"facets\")");
+    if (key != "channels" && key != "default" && key != "facets" && key != "environment")
+      fail(file, layout.line(key),
+           "unknown key " + in_quotes(key) + " (expected \"channels\", \"default\", \"facets\", \"environment\")");
   return doc;
 }
 
@@ -122,6 +124,17 @@ DefaultValues read_defaults(const Json& doc, const std::vector<std::string>& cha
     (key == "rho" ? defaults.rho : defaults.e) = std::move(v);
   }
   return defaults;
+}
+
+/// "environment": the environment's radiosity, a number (every channel) or one per channel,
+/// checked as E is; empty when not given.
+std::vector<double> read_environment(const Json& doc, const std::vector<std::string>& channels, const std::string& file,
+                                     const JsonLayout& layout) {
+  if (!doc.contains("environment")) return {};
+  const long at = layout.line("environment");
+  std::vector<double> v = channel_values(doc["environment"], channels.size(), file, at, "environment");
+  check_values(v, false, channels, file, at, "the environment");
+  return v;
 }
 
 /// rho and E per facet as the entries of "facets" give them, and the entry naming each facet
@@ -263,6 +276,7 @@ SceneData load_off_scene(const std::string& path, const std::string& materials_p
   const SidecarContext ctx{file, path, nf, scene.channels, layout};
   const FacetEntries entries = read_facet_entries(doc, ctx);
   assign_facet_values(scene, entries, defaults, ctx);
+  scene.environment = read_environment(doc, scene.channels, file, layout);
   return scene;
 }
 

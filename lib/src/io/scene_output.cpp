@@ -7,6 +7,7 @@
 
 #include <array>
 #include <bit>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -60,13 +61,13 @@ struct SharedVertices {
   std::vector<std::array<std::size_t, 3>> corner;  // [element] -> point indices
 };
 
-SharedVertices share_vertices(const ElementField& f) {
+SharedVertices share_vertices(const std::vector<std::array<Vec3, 3>>& triangle) {
   SharedVertices s;
   std::map<std::array<std::uint64_t, 3>, std::size_t> index;
-  s.corner.resize(f.size());
-  for (std::size_t i = 0; i < f.size(); ++i)
+  s.corner.resize(triangle.size());
+  for (std::size_t i = 0; i < triangle.size(); ++i)
     for (int k = 0; k < 3; ++k) {
-      const Vec3& p = f.triangle[i][static_cast<std::size_t>(k)];
+      const Vec3& p = triangle[i][static_cast<std::size_t>(k)];
       const std::array<std::uint64_t, 3> key = {std::bit_cast<std::uint64_t>(p.x()),
                                                 std::bit_cast<std::uint64_t>(p.y()),
                                                 std::bit_cast<std::uint64_t>(p.z())};
@@ -139,7 +140,7 @@ std::string radiosity_ply(const ElementField& field) {
   for (std::size_t c = 0; c < field.channels.size(); ++c)
     for (std::size_t i = 0; i < field.size() && as_float[c]; ++i)
       as_float[c] = fits_float(value(field.radiosity[c], i));
-  const SharedVertices sv = share_vertices(field);
+  const SharedVertices sv = share_vertices(field.triangle);
   const std::vector<Rgb> colour = colours_of_valid(field);
   std::string out = "ply\nformat ascii 1.0\ncomment panelrad radiosity\n";
   out += "element vertex " + std::to_string(sv.points.size()) + "\n";
@@ -169,11 +170,11 @@ void write_radiosity_vtk(const std::string& path, const ElementField& field) {
   write_file_atomically(path, radiosity_vtk(field));
 }
 
-std::string radiosity_vtk(const ElementField& field) {
-  validate("write_radiosity_vtk", field);
-  const SharedVertices sv = share_vertices(field);
-  const std::size_t n = field.size();
-  std::string out = "# vtk DataFile Version 3.0\npanelrad radiosity\nASCII\nDATASET POLYDATA\n";
+std::string cells_vtk(const std::string& title, const std::vector<std::array<Vec3, 3>>& triangle,
+                      const std::vector<geometry::Index>& facet, const std::vector<CellValues>& cells) {
+  const SharedVertices sv = share_vertices(triangle);
+  const std::size_t n = triangle.size();
+  std::string out = "# vtk DataFile Version 3.0\n" + title + "\nASCII\nDATASET POLYDATA\n";
   out += "POINTS " + std::to_string(sv.points.size()) + " double\n";
   append_points(out, sv.points);
   out += "POLYGONS " + std::to_string(n) + ' ' + std::to_string(4 * n) + '\n';
@@ -182,21 +183,30 @@ std::string radiosity_vtk(const ElementField& field) {
            std::to_string(sv.corner[i][2]) + '\n';
   out += "CELL_DATA " + std::to_string(n) + '\n';
   out += "SCALARS facet int 1\nLOOKUP_TABLE default\n";
-  for (std::size_t i = 0; i < n; ++i) out += std::to_string(field.facet[i]) + '\n';
-  const auto scalars = [&](const std::string& name, const auto& get) {
+  for (std::size_t i = 0; i < n; ++i) out += std::to_string(facet[i]) + '\n';
+  for (const CellValues& cell : cells) {
+    std::string name = cell.name;  // a VTK name is one token
+    for (char& ch : name)
+      if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '_' && ch != '-' && ch != '.') ch = '_';
     out += "SCALARS " + name + " double 1\nLOOKUP_TABLE default\n";
     for (std::size_t i = 0; i < n; ++i) {
-      append_g17(out, get(i));
+      append_g17(out, cell.value(i));
       out += '\n';
     }
-  };
-  scalars("area", [&](std::size_t i) { return field.area[i]; });
+  }
+  return out;
+}
+
+std::string radiosity_vtk(const ElementField& field) {
+  validate("write_radiosity_vtk", field);
+  std::vector<CellValues> cells{{"area", [&](std::size_t i) { return field.area[i]; }}};
   for (std::size_t c = 0; c < field.channels.size(); ++c) {
     const std::string s = suffix(field, c);
-    scalars("rho" + s, [&](std::size_t i) { return value(field.rho[c], i); });
-    scalars("E" + s, [&](std::size_t i) { return value(field.emission[c], i); });
-    scalars("u" + s, [&](std::size_t i) { return value(field.radiosity[c], i); });
+    cells.push_back({"rho" + s, [&field, c](std::size_t i) { return value(field.rho[c], i); }});
+    cells.push_back({"E" + s, [&field, c](std::size_t i) { return value(field.emission[c], i); }});
+    cells.push_back({"u" + s, [&field, c](std::size_t i) { return value(field.radiosity[c], i); }});
   }
+  std::string out = cells_vtk("panelrad radiosity", field.triangle, field.facet, cells);
   if (is_rgb(field)) {  // the picture's colours, for ParaView's "Map Scalars" off
     out += "COLOR_SCALARS colour 3\n";
     char buf[64];

@@ -14,6 +14,7 @@ Scene to_scene(SceneData&& data) {
     scene.set_reflectivity(std::move(data.rho[c]), c);
     scene.set_emissivity(std::move(data.emission[c]), c);
   }
+  for (std::size_t c = 0; c < data.environment.size(); ++c) scene.set_environment(data.environment[c], c);
   scene.set_facet_material(std::move(data.facet_material));
   for (std::string& note : data.notes) scene.add_note(std::move(note));
   return scene;

@@ -18,6 +18,7 @@ struct SceneData {
   std::optional<geometry::ValidatedMesh> mesh;  // set by load_mesh
   std::vector<std::string> channels;
   std::vector<std::vector<double>> rho, emission;  // [channel][facet], checked as read
+  std::vector<double> environment;                 // [channel], or empty: none
   std::vector<std::string> facet_material;
   std::vector<std::string> notes;
 };

@@ -1,5 +1,6 @@
 // View factors as CSV and .npy files, written as one set (view_factor_output.hpp).
 #include <panelrad/io/view_factor_output.hpp>
+#include <panelrad/io/scene_output.hpp>
 
 #include <panelrad/io/text_output.hpp>
 
@@ -38,21 +39,40 @@ std::vector<std::string> view_factor_paths(const std::string& prefix, bool with_
   std::vector<std::string> paths{prefix + ".csv"};
   if (with_error) paths.push_back(prefix + "_error.csv");
   paths.push_back(prefix + ".npy");
-  if (with_elements) paths.push_back(prefix + "_elements.csv");
+  if (with_elements) {
+    paths.push_back(prefix + "_elements.csv");
+    paths.push_back(prefix + "_elements.vtk");
+  }
   return paths;
 }
 
 std::string element_sky_csv(const ViewFactors& v) {
   const ElementSky& e = v.elements;
   std::ostringstream out;
-  out << "element,facet,group,x,y,z,area,sky\n";
+  out << "element,facet,group,x,y,z,area,sky";
+  for (const std::string& name : e.target_names) out << ',' << csv_field("F_" + name);
+  out << '\n';
   for (std::size_t i = 0; i < e.facet.size(); ++i) {
     const auto k = static_cast<Eigen::Index>(i);
     out << i << ',' << e.facet[i] << ',' << csv_field(v.names[static_cast<std::size_t>(e.group[i])]);
     for (int c = 0; c < 3; ++c) out << ',' << number(e.centroid[i][c]);
-    out << ',' << number(e.area[k]) << ',' << number(e.sky[k]) << '\n';
+    out << ',' << number(e.area[k]) << ',' << number(e.sky[k]);
+    for (Eigen::Index t = 0; t < e.to.cols(); ++t) out << ',' << number(e.to(k, t));
+    out << '\n';
   }
   return out.str();
+}
+
+std::string element_sky_vtk(const ViewFactors& v) {
+  const ElementSky& e = v.elements;
+  std::vector<CellValues> cells{{"group", [&e](std::size_t i) { return static_cast<double>(e.group[i]); }},
+                                {"area", [&e](std::size_t i) { return e.area[static_cast<Eigen::Index>(i)]; }},
+                                {"sky", [&e](std::size_t i) { return e.sky[static_cast<Eigen::Index>(i)]; }}};
+  for (std::size_t t = 0; t < e.target_names.size(); ++t)
+    cells.push_back({"F_" + e.target_names[t], [&e, t](std::size_t i) {
+                       return e.to(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(t));
+                     }});
+  return cells_vtk("panelrad view factors per element", e.triangle, e.facet, cells);
 }
 
 std::string view_factor_csv(const ViewFactors& v, const Eigen::MatrixXd& values, const Eigen::VectorXd& uncovered) {
@@ -100,7 +120,10 @@ std::vector<std::string> write_view_factors(const ViewFactors& v, const std::str
   set.add(paths[0], view_factor_csv(v, v.F, v.uncovered));
   if (with_error) set.add(paths[1], view_factor_csv(v, v.error, v.uncovered_error));
   set.add(paths[with_error ? 2 : 1], npy_bytes(v.F));
-  if (with_elements) set.add(paths.back(), element_sky_csv(v));
+  if (with_elements) {
+    set.add(paths[paths.size() - 2], element_sky_csv(v));
+    set.add(paths.back(), element_sky_vtk(v));
+  }
   set.commit();
   return paths;
 }

@@ -173,6 +173,18 @@ void Scene::set_emissivity(SurfaceFunction e, std::size_t c) {
   ch.e_facet.clear();
 }
 
+void Scene::set_environment(double radiosity, std::size_t c) {
+  Channel& ch = channel(c);
+  check_value(false, radiosity, "the environment", channels_[c]);
+  ch.environment = radiosity;
+}
+
+double Scene::environment(std::size_t c) const { return channel(c).environment; }
+
+bool Scene::sees_environment() const {
+  return !enclosed_ && std::any_of(data_.begin(), data_.end(), [](const Channel& ch) { return ch.environment > 0; });
+}
+
 void Scene::set_manufactured_solution(SurfaceFunction u, double rel_tol) {
   if (channels_.size() != 1)
     throw std::logic_error("manufactured solution: a scalar scene (one channel) only, this one has " +

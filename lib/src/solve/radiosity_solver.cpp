@@ -349,8 +349,33 @@ Eigen::VectorXd RadiositySolver::irradiance(const Eigen::VectorXd& u) const {
   return whole(Hu);
 }
 
+const Eigen::VectorXd& RadiositySolver::uncovered() const {
+  if (!uncovered_) {
+    say("uncovered part of every hemisphere: 1 - H 1");
+    uncovered_ = (1 - irradiance(Eigen::VectorXd::Ones(info_.n)).array()).cwiseMax(0.0).matrix();
+  }
+  return *uncovered_;
+}
+
+Eigen::VectorXd RadiositySolver::sky() const {
+  return scene_.enclosed() ? Eigen::VectorXd::Zero(info_.n) : uncovered();
+}
+
+Eigen::VectorXd RadiositySolver::environment_light(std::size_t channel) const {
+  const double environment = scene_.environment(channel);
+  if (environment == 0 || scene_.enclosed()) return Eigen::VectorXd::Zero(info_.n);
+  return environment * uncovered();
+}
+
+// E + rho u_env s: the surfaces' emission and the environment's light they reflect.
+Collocation::ChannelValues RadiositySolver::right_hand_side(std::size_t channel) const {
+  Collocation::ChannelValues v = channel_values(channel);
+  if (scene_.environment(channel) > 0 && !scene_.enclosed()) v.E += v.rho.cwiseProduct(environment_light(channel));
+  return v;
+}
+
 ChannelSolve RadiositySolver::solve(std::size_t channel) const {
-  const Collocation::ChannelValues v = channel_values(channel);
+  const Collocation::ChannelValues v = right_hand_side(channel);
   return solve_values(v.rho, v.E, "channel " + scene_.channels()[channel]);
 }
 
@@ -458,7 +483,7 @@ std::vector<ChannelSolve> RadiositySolver::solve_channels(const std::vector<std:
   std::vector<ChannelIteration> group;
   std::vector<std::string> labels(channels.size());
   for (std::size_t s = 0; s < channels.size(); ++s) {
-    const Collocation::ChannelValues v = channel_values(channels[s]);
+    const Collocation::ChannelValues v = right_hand_side(channels[s]);
     labels[s] = "channel " + scene_.channels()[channels[s]];
     const double max_rho = v.rho.maxCoeff();
     const bool neumann = together ? std::isfinite(max_rho) : solver_kind(max_rho) == SolverKind::neumann;
@@ -477,6 +502,8 @@ std::vector<ChannelSolve> RadiositySolver::solve_channels(const std::vector<std:
   } catch (const std::bad_alloc&) {
     throw ResourceError(out_of_memory_message(stage_, static_cast<double>(info_.n), stage_bytes_));
   }
+  for (std::size_t s = 0; s < channels.size(); ++s)  // the light arriving from the environment too
+    if (scene_.environment(channels[s]) > 0 && !scene_.enclosed()) out[s].irradiance += environment_light(channels[s]);
   return out;
 }
 

@@ -7,7 +7,6 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <optional>
 #include <stdexcept>
 
 namespace panelrad {
@@ -80,45 +79,56 @@ void fill_field(const Scene& scene, const RadiositySolver& solver, ElementField&
   }
 }
 
-// Channels with the same rho and E at every element have the same solution: solved once.
-int identical_earlier_channel(const ElementField& field, std::size_t c) {
+// Channels with the same rho, E and environment at every element have the same solution: solved
+// once.
+int identical_earlier_channel(const Scene& scene, const ElementField& field, std::size_t c) {
   for (std::size_t d = 0; d < c; ++d)
-    if (field.rho[d] == field.rho[c] && field.emission[d] == field.emission[c]) return static_cast<int>(d);
+    if (field.rho[d] == field.rho[c] && field.emission[d] == field.emission[c] &&
+        scene.environment(d) == scene.environment(c))
+      return static_cast<int>(d);
   return -1;
 }
 
-// The energy balance of channel c: emitted power sum A_i E_i, absorbed power
-// sum A_i (1 - rho_i) H_i, and, in a scene that is not closed, the power that reaches no front side.
-// Of the light leaving dA_i a fraction H_ij (the point-to-element form factor) lands on element j,
-// so F_i = (H 1)_i of it lands on front sides (`seen`; null in a closed scene, where F_i = 1) and
-// A_i u_i (1 - F_i) leaves the scene or falls on a back side. 1 - F_i < 0 is rounding or the fast
-// operator's error: taken as 0.
-void energy_balance(const ElementField& field, std::size_t c, const Eigen::VectorXd* seen, ChannelSolution& ch) {
+// The environment shines into channel c (Scene::set_environment).
+bool lit_by_environment(const Scene& scene, std::size_t c) { return scene.environment(c) > 0 && !scene.enclosed(); }
+
+// The energy balance of channel c: emitted power sum A_i E_i, the environment's power arriving
+// sum A_i u_env s_i, absorbed power sum A_i (1 - rho_i) H_i, and, in a scene that is not closed,
+// the power that reaches no front side. Of the light leaving dA_i a fraction H_ij (the
+// point-to-element form factor) lands on element j, so 1 - (H 1)_i of it (`uncovered`, taken >= 0;
+// null in a closed scene, where it is 0) leaves the scene or falls on a back side.
+void energy_balance(const Scene& scene, const ElementField& field, std::size_t c, const Eigen::VectorXd* uncovered,
+                    ChannelSolution& ch) {
   const Eigen::VectorXd& rho = field.rho[c];
   const Eigen::VectorXd& E = field.emission[c];
+  const double environment = lit_by_environment(scene, c) ? scene.environment(c) : 0;
   double escaped = 0;
   for (Index i = 0; i < rho.size(); ++i) {
     const double a = field.area[static_cast<std::size_t>(i)];
     ch.emitted += a * E[i];
     ch.absorbed += a * (1 - rho[i]) * ch.irradiance[i];
-    if (seen) escaped += a * ch.radiosity[i] * std::max(0.0, 1 - (*seen)[i]);
+    if (uncovered) {
+      escaped += a * ch.radiosity[i] * (*uncovered)[i];
+      ch.environment_in += a * environment * (*uncovered)[i];
+    }
   }
-  ch.energy_mismatch = ch.emitted != 0 ? std::abs(ch.emitted - ch.absorbed - escaped) / std::abs(ch.emitted) : 0;
-  ch.escaped = ch.emitted != 0 ? escaped / ch.emitted : 0;
+  const double in = ch.emitted + ch.environment_in;
+  ch.energy_mismatch = in != 0 ? std::abs(in - ch.absorbed - escaped) / std::abs(in) : 0;
+  ch.escaped = in != 0 ? escaped / in : 0;
 }
 
 // What channel c needs before any solve: the solution of an identical earlier channel, or u = 0
 // when it emits nothing; false when it is to be solved.
-bool channel_without_solve(const SceneSolution& out, std::size_t c, ChannelSolution& ch,
+bool channel_without_solve(const Scene& scene, const SceneSolution& out, std::size_t c, ChannelSolution& ch,
                            const std::function<void(const std::string&)>& say) {
   const ElementField& field = out.field;
   ch.name = field.channels[c];
-  if (const int same = identical_earlier_channel(field, c); same >= 0) {
+  if (const int same = identical_earlier_channel(scene, field, c); same >= 0) {
     ch.shared_with = out.channels[static_cast<std::size_t>(same)].name;  // its solution is copied once solved
     say("channel " + ch.name + ": same rho and E as channel " + ch.shared_with + ", solution shared");
     return true;
   }
-  if (field.emission[c].lpNorm<Eigen::Infinity>() == 0) {
+  if (field.emission[c].lpNorm<Eigen::Infinity>() == 0 && !lit_by_environment(scene, c)) {
     ch.radiosity = Eigen::VectorXd::Zero(out.n);  // nothing emitted: u = 0 exactly
     ch.irradiance = Eigen::VectorXd::Zero(out.n);
     ch.solver = "none (E = 0 in this channel: u = 0)";
@@ -128,8 +138,9 @@ bool channel_without_solve(const SceneSolution& out, std::size_t c, ChannelSolut
 }
 
 // (I - diag(rho_c) H) u_c = E_c, (32), solved, and the energy balance.
-void take_solve(ChannelSolve&& r, const ElementField& field, std::size_t c, const Eigen::VectorXd* seen,
-                ChannelSolution& ch, const std::function<void(const std::string&)>& say) {
+void take_solve(ChannelSolve&& r, const Scene& scene, const ElementField& field, std::size_t c,
+                const Eigen::VectorXd* uncovered, ChannelSolution& ch,
+                const std::function<void(const std::string&)>& say) {
   ch.status = r.status;
   ch.message = std::move(r.message);
   ch.radiosity = std::move(r.u);
@@ -138,7 +149,7 @@ void take_solve(ChannelSolve&& r, const ElementField& field, std::size_t c, cons
   ch.residual = r.residual;
   ch.error_estimate = r.error_estimate;
   ch.irradiance = std::move(r.irradiance);  // the light arriving: the product without rho
-  energy_balance(field, c, seen, ch);
+  energy_balance(scene, field, c, uncovered, ch);
   say("channel " + ch.name + ": " + ch.solver + fmt(", %.0f products, energy mismatch %.2e", ch.iterations, ch.energy_mismatch));
 }
 
@@ -197,20 +208,19 @@ SceneSolution solve_scene(const Scene& scene, const SolveOptions& options) {
   std::vector<std::size_t> to_solve;
   for (std::size_t c = 0; c < scene.num_channels(); ++c) {
     ChannelSolution ch;
-    if (!channel_without_solve(out, c, ch, say)) to_solve.push_back(c);
+    if (!channel_without_solve(scene, out, c, ch, say)) to_solve.push_back(c);
     out.channels.push_back(std::move(ch));
   }
   std::vector<ChannelSolve> solves = solver.solve_channels(to_solve);
-  // Outside a closed scene, F = H 1: the fraction of each point's light that lands on front sides.
-  std::optional<Eigen::VectorXd> seen;
-  if (!out.closed && !to_solve.empty()) seen = solver.irradiance(Eigen::VectorXd::Ones(out.n));
+  // Outside a closed scene, 1 - H 1: the fraction of each point's light that reaches no front side.
+  const Eigen::VectorXd* uncovered = !out.closed && !to_solve.empty() ? &solver.uncovered() : nullptr;
   for (std::size_t s = 0; s < to_solve.size(); ++s)
-    take_solve(std::move(solves[s]), out.field, to_solve[s], seen ? &*seen : nullptr, out.channels[to_solve[s]], say);
+    take_solve(std::move(solves[s]), scene, out.field, to_solve[s], uncovered, out.channels[to_solve[s]], say);
   for (std::size_t c = 0; c < scene.num_channels(); ++c) {
     ChannelSolution& ch = out.channels[c];
     if (!ch.shared_with.empty()) {  // copy the solution of the channel it shares (solved above)
       const std::string name = ch.name, shared = ch.shared_with;
-      const int same = identical_earlier_channel(out.field, c);
+      const int same = identical_earlier_channel(scene, out.field, c);
       ch = out.channels[static_cast<std::size_t>(same)];
       ch.name = name;
       ch.shared_with = shared;

@@ -27,8 +27,51 @@ struct LevelFactors {
   ElementSky elements;  // with `keep_elements`
 };
 
+/// What the finest level keeps per element: nothing (`keep` false), or the sky and the factors to
+/// `targets` (group indices, in the order of their names).
+struct ElementRequest {
+  bool keep = false;
+  std::vector<Index> targets;
+  std::vector<std::string> names;
+};
+
+/// The group index of every name of `options.element_targets` (std::invalid_argument naming one
+/// that is no group, or one given twice).
+ElementRequest element_request(const SurfaceGroups& groups, const ViewFactorOptions& options) {
+  ElementRequest r;
+  r.keep = options.elements || !options.element_targets.empty();
+  for (const std::string& name : options.element_targets) {
+    const auto it = std::find(groups.names.begin(), groups.names.end(), name);
+    if (it == groups.names.end())
+      throw std::invalid_argument("view factors: element target '" + name + "' is not a group (the groups are " +
+                                  std::to_string(groups.names.size()) + ": '" + groups.names.front() + "'" +
+                                  (groups.names.size() > 1 ? ", ..." : "") + ")");
+    if (std::find(r.names.begin(), r.names.end(), name) != r.names.end())
+      throw std::invalid_argument("view factors: element target '" + name + "' is given twice");
+    r.targets.push_back(static_cast<Index>(it - groups.names.begin()));
+    r.names.push_back(name);
+  }
+  return r;
+}
+
+/// The elements' record: geometry, group, sky = 1 - covered.
+ElementSky element_record(const Collocation& col, const std::vector<Index>& group, const Eigen::VectorXd& area,
+                          const Eigen::VectorXd& covered) {
+  ElementSky e;
+  e.group = group;
+  e.area = area;
+  e.sky = Eigen::VectorXd::Ones(area.size()) - covered;
+  for (Index i = 0; i < area.size(); ++i) {
+    e.facet.push_back(col.facet(i));
+    e.triangle.push_back(col.tree().elements()[static_cast<std::size_t>(i)].vertex);
+    e.centroid.push_back(col.collocation_point(i));
+  }
+  return e;
+}
+
 LevelFactors factors_at(const Scene& scene, const SurfaceGroups& groups, const SolveOptions& solve, int block_columns,
-                        bool keep_elements) {
+                        const ElementRequest& keep) {
+  const bool keep_elements = keep.keep;
   const RadiositySolver solver(scene, solve);
   const Collocation& col = solver.collocation();
   const Index n = col.size();
@@ -49,6 +92,7 @@ LevelFactors factors_at(const Scene& scene, const SurfaceGroups& groups, const S
   out.F = Eigen::MatrixXd::Zero(G, G);
   Eigen::VectorXd covered;  // (H 1)_i, summed over the groups' columns in group order
   if (keep_elements) covered = Eigen::VectorXd::Zero(n);
+  Eigen::MatrixXd to = Eigen::MatrixXd::Zero(keep_elements ? n : 0, static_cast<Index>(keep.targets.size()));
   Eigen::MatrixXd X, Y;
   for (Index first = 0; first < G; first += block_columns) {
     const Index m = std::min<Index>(block_columns, G - first);
@@ -63,16 +107,14 @@ LevelFactors factors_at(const Scene& scene, const SurfaceGroups& groups, const S
       for (Index i = 0; i < n; ++i) out.F(group[static_cast<std::size_t>(i)], first + c) += a[i] * Y(i, c);
     if (keep_elements)
       for (Index c = 0; c < m; ++c) covered += Y.col(c);
+    for (std::size_t k = 0; k < keep.targets.size(); ++k)
+      if (keep.targets[k] >= first && keep.targets[k] < first + m)
+        to.col(static_cast<Index>(k)) = Y.col(keep.targets[k] - first);
   }
   if (keep_elements) {
-    ElementSky& e = out.elements;
-    e.group = group;
-    e.area = a;
-    e.sky = Eigen::VectorXd::Ones(n) - covered;
-    for (Index i = 0; i < n; ++i) {
-      e.facet.push_back(col.facet(i));
-      e.centroid.push_back(col.collocation_point(i));
-    }
+    out.elements = element_record(col, group, a, covered);
+    out.elements.target_names = keep.names;
+    out.elements.to = std::move(to);
   }
   for (Index I = 0; I < G; ++I) out.F.row(I) /= out.area[I];
   return out;
@@ -175,8 +217,9 @@ ViewFactors compute_view_factors(const Scene& scene, const SurfaceGroups& groups
     throw std::invalid_argument("view factors: block_columns " + std::to_string(options.block_columns) + " is not >= 1");
   if (options.solve.communicator)
     throw std::invalid_argument("view factors: one process only (the solver's communicator is set)");
+  const ElementRequest keep = element_request(groups, options);
   Stopwatch clock;
-  LevelFactors fine = factors_at(scene, groups, options.solve, options.block_columns, options.elements);
+  LevelFactors fine = factors_at(scene, groups, options.solve, options.block_columns, keep);
   ViewFactors v;
   v.names = groups.names;
   v.area = fine.area;
@@ -191,7 +234,7 @@ ViewFactors compute_view_factors(const Scene& scene, const SurfaceGroups& groups
   if (options.estimate_error && fine.level >= 1) {
     SolveOptions coarser = options.solve;
     coarser.level = fine.level - 1;
-    const LevelFactors c = factors_at(scene, groups, coarser, options.block_columns, false);
+    const LevelFactors c = factors_at(scene, groups, coarser, options.block_columns, ElementRequest{});
     v.error = (fine.F - c.F).cwiseAbs();
     v.uncovered_error = (v.uncovered - (Eigen::VectorXd::Ones(c.F.rows()) - c.F.rowwise().sum())).cwiseAbs();
   }

@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,18 @@ std::string radiosity_ply(const ElementField& field);
 /// rho_<c>, E_<c>, u_<c>.
 void write_radiosity_vtk(const std::string& path, const ElementField& field);
 std::string radiosity_vtk(const ElementField& field);
+
+/// One CELL_DATA array of cells_vtk: its name and the value of element i.
+struct CellValues {
+  std::string name;
+  std::function<double(std::size_t)> value;
+};
+
+/// Legacy ASCII VTK POLYDATA of any per-element values: the triangles' corners as points
+/// (shared bit-exactly), the triangles, CELL_DATA `facet` (int) and each of `cells` (double, 17
+/// digits). A character of a name other than a letter, digit, '_', '-', '.' becomes '_'.
+std::string cells_vtk(const std::string& title, const std::vector<std::array<geometry::Vec3, 3>>& triangle,
+                      const std::vector<geometry::Index>& facet, const std::vector<CellValues>& cells);
 
 struct RenderOptions {
   int width = 960;

@@ -8,7 +8,10 @@
 //   PREFIX.npy        the matrix F as a G x G array of float64 (numpy.load);
 //   PREFIX_elements.csv  with the elements kept (ViewFactorOptions::elements): per element of the
 //                     finest level `element,facet,group,x,y,z,area,sky` (its collocation point,
-//                     area and sky view factor 1 - (H 1)_i).
+//                     area and sky view factor 1 - (H 1)_i), then F_<J> for each group J of
+//                     ViewFactorOptions::element_targets;
+//   PREFIX_elements.vtk  the same per element on its triangle (legacy VTK, ParaView): facet,
+//                     group (index), area, sky and F_<J> as cell data.
 // Numbers are written with 17 significant digits (each double read back exactly).
 #include <panelrad/viewfactors/view_factors.hpp>
 
@@ -21,8 +24,9 @@ namespace panelrad {
 /// elements' file when `with_elements`).
 std::vector<std::string> view_factor_paths(const std::string& prefix, bool with_error, bool with_elements = false);
 
-/// The CSV text of PREFIX_elements.csv.
+/// The CSV text of PREFIX_elements.csv, and the VTK text of PREFIX_elements.vtk.
 std::string element_sky_csv(const ViewFactors& v);
+std::string element_sky_vtk(const ViewFactors& v);
 
 /// The CSV text of PREFIX.csv (`values` = v.F and v.uncovered) or PREFIX_error.csv (v.error and
 /// v.uncovered_error).

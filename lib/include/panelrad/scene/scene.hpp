@@ -84,6 +84,18 @@ class Scene {
   void set_emissivity(double e, std::size_t channel = 0);
   void set_emissivity(std::vector<double> per_facet, std::size_t channel = 0);
   void set_emissivity(SurfaceFunction e, std::size_t channel = 0);
+  /// The environment's radiosity in `channel` (the sky of an open scene): every point of a front
+  /// side receives, besides the light of the surfaces it sees, this radiosity from the part s(P)
+  /// of its hemisphere (cosine-weighted) that no front side covers, so that (1) becomes
+  /// u - K u = E + rho u_env s. 0 (the default) is a black, empty environment. Checked by
+  /// emission_problem (std::invalid_argument naming the channel). An enclosed scene has s = 0:
+  /// its environment is never seen. What a front side sees of the back of a one-sided surface
+  /// counts as environment; a sheet seen from both sides is given as a thin closed solid.
+  void set_environment(double radiosity, std::size_t channel = 0);
+  double environment(std::size_t channel = 0) const;
+  /// Some channel has an environment above 0 and the scene is not enclosed.
+  bool sees_environment() const;
+
   /// E := u - K u, with K u integrated to relative accuracy `rel_tol` over the exact surface.
   /// Scalar convex scenes only (one channel, V = 1; std::logic_error otherwise). E may then be negative
   /// somewhere: it is derived, not data, and is not held to emission_problem.
@@ -127,6 +139,7 @@ class Scene {
   struct Channel {
     std::vector<double> rho_facet, e_facet;  // empty when the function is set
     SurfaceFunction rho_fn, e_fn;
+    double environment = 0;
   };
   const Channel& channel(std::size_t c) const;
   Channel& channel(std::size_t c);

@@ -182,12 +182,24 @@ class RadiositySolver {
   /// fold_reflectivity (the operator has no H).
   Eigen::VectorXd irradiance(const Eigen::VectorXd& u) const;
 
-  /// The scene's channel (its name in the progress lines).
+  /// 1 - (H 1)_i, taken >= 0: the part of P_i's hemisphere (cosine-weighted) where no front side
+  /// is seen, so where the light leaving P_i reaches no front side: it leaves the scene or falls on
+  /// a back side. One product, on first use (every process calls it, with a communicator);
+  /// std::logic_error with fold_reflectivity.
+  const Eigen::VectorXd& uncovered() const;
+  /// What of it is the environment (Scene::set_environment): uncovered() where the scene is not
+  /// enclosed, else 0 (no product).
+  Eigen::VectorXd sky() const;
+  /// u_env s: the light arriving at P_i from the environment in `channel` (0 without one).
+  Eigen::VectorXd environment_light(std::size_t channel) const;
+
+  /// The scene's channel (its name in the progress lines), with its environment's light
+  /// (Scene::set_environment): E + rho u_env s on the right-hand side.
   ChannelSolve solve(std::size_t channel) const;
   /// Any data at the collocation points: rho (each passing reflectivity_problem) and E (finite).
   ChannelSolve solve(const Eigen::VectorXd& rho, const Eigen::VectorXd& E) const;
   /// The scene's channels, each solved as solve(channel) solves it (the same iterates, bit for
-  /// bit), with its irradiance H u. The channels solved by the Neumann iteration (34) advance
+  /// bit), with its irradiance H u (+ environment_light(channel)). The channels solved by the Neumann iteration (34) advance
   /// together: each step multiplies the iterates of all the channels still iterating in one
   /// pass over the operator (RadiosityOperator::apply_block), and the product that gives a
   /// channel's residual also gives its irradiance. Channels solved by GMRES or LU go one by
@@ -208,6 +220,7 @@ class RadiositySolver {
   /// This process's rows of a whole vector, and the whole vector from every process's rows.
   Eigen::VectorXd held(const Eigen::VectorXd& whole) const;
   Eigen::VectorXd whole(const Eigen::VectorXd& held) const;
+  Collocation::ChannelValues right_hand_side(std::size_t channel) const;
   ChannelSolve solve_values(const Eigen::VectorXd& rho, const Eigen::VectorXd& E, const std::string& label) const;
   SolverOptions iteration_options(const std::string& label) const;
   SolverKind solver_kind(double max_rho) const;
@@ -229,6 +242,7 @@ class RadiositySolver {
   // Where the setup is, so that an allocation failure can name the stage and its estimate.
   mutable std::string stage_;
   mutable std::size_t stage_bytes_ = 0;
+  mutable std::optional<Eigen::VectorXd> uncovered_;  // uncovered(), once computed
 };
 
 /// The largest level L with n0 4^L <= max_elements (0 when even level 0 is larger).

@@ -27,11 +27,15 @@ struct ChannelSolution : IterationReport {
   /// emitted = absorbed; in any scene emitted = absorbed + escaped power, up to the discretization
   /// (point-to-element form factors are not reciprocal).
   double emitted = 0, absorbed = 0;
-  /// |emitted - absorbed - escaped power| / emitted (0 when nothing is emitted): the error of the
-  /// balance, whether the scene is closed or not.
+  /// The environment's power arriving, sum A_i u_env s_i (Scene::set_environment; 0 without one):
+  /// on the emitted side of the balance.
+  double environment_in = 0;
+  /// |emitted + environment_in - absorbed - escaped power| / (emitted + environment_in) (0 when
+  /// nothing enters): the error of the balance, whether the scene is closed or not.
   double energy_mismatch = 0;
-  /// sum A_i u_i (1 - F_i) / emitted, each 1 - F_i taken >= 0: the fraction of the light that
-  /// reaches no front side (0 in a closed scene, where F_i = 1 is not computed). Never negative.
+  /// sum A_i u_i (1 - F_i) / (emitted + environment_in), each 1 - F_i taken >= 0: the fraction of
+  /// the light that reaches no front side (0 in a closed scene, where F_i = 1 is not computed).
+  /// Never negative.
   double escaped = 0;
   /// energy_balance_holds(energy_mismatch, the solution's expected_energy_mismatch).
   bool energy_balanced = true;

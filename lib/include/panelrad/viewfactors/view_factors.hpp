@@ -15,6 +15,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,24 @@ SurfaceGroups groups_by_name(const std::vector<std::string>& per_facet);
 /// group index out of range, a name empty or given twice, a group with no facet.
 std::string groups_problem(const Scene& scene, const SurfaceGroups& groups);
 
+/// A scene whose chosen groups are two-sided sheets, and its groups.
+struct TwoSidedScene {
+  Scene scene;
+  SurfaceGroups groups;
+};
+
+/// Every facet of the groups named in `two_sided` (open sheets: a fin, a louvre, a pane) gets its
+/// back side as a facet of its own: the same triangles wound the other way, on vertices of their
+/// own, appended after the scene's facets (facet num_facets + k for the k-th facet so copied) in a
+/// group "NAME (back)" after the scene's groups, so that each side radiates as its own elements;
+/// two open sheets back to back are both kept (no contact is removed). The mesh is validated
+/// anew as a geometry-only scene (rho and E are not carried: view factors do not use them), its
+/// materials and object names copied to the back sides. std::invalid_argument for a name that
+/// is no group or is given twice, or a group already ending in " (back)"; the validation's
+/// MeshError when the back sides do not make a valid scene (a closed solid's faces: their backs
+/// would lie inside it).
+TwoSidedScene with_back_sides(const Scene& scene, const SurfaceGroups& groups, const std::vector<std::string>& two_sided);
+
 struct ViewFactorOptions {
   /// The discretization and the operator, as a solve takes them (level or max_elements, method,
   /// accuracy, visibility, progress). Reflectivity plays no part: H carries none.
@@ -61,14 +80,22 @@ struct ViewFactorOptions {
   /// Keep per element (level L) its group, centroid, area and sky view factor 1 - (H 1)_i
   /// (ViewFactors::elements): 1 - sum over every group's column, no extra product.
   bool elements = false;
+  /// Groups, by name, whose factor from every element, F_iJ = (H chi_J)_i (the part of P_i's
+  /// hemisphere, cosine-weighted, that J covers), is kept beside the sky (implies `elements`; no
+  /// extra product: the columns of the block products). A name that is no group is a
+  /// std::invalid_argument naming it.
+  std::vector<std::string> element_targets;
 };
 
 /// Per element of the finest level: what ViewFactorOptions::elements keeps.
 struct ElementSky {
   std::vector<geometry::Index> facet, group;
+  std::vector<std::array<geometry::Vec3, 3>> triangle;  ///< corners, as ElementField::triangle
   std::vector<geometry::Vec3> centroid;  ///< the collocation point P_i
   Eigen::VectorXd area;
   Eigen::VectorXd sky;                   ///< 1 - (H 1)_i: what of P_i's hemisphere no surface covers
+  std::vector<std::string> target_names;  ///< ViewFactorOptions::element_targets
+  Eigen::MatrixXd to;                     ///< to(i, k) = F_iJ for J = target_names[k], n x targets
 };
 
 struct ViewFactors {
