@@ -23,5 +23,6 @@ Command add_check(CLI::App& panelrad);  ///< panelrad check
 Command add_cube(CLI::App& panelrad);   ///< panelrad cube
 Command add_solve(CLI::App& panelrad);  ///< panelrad solve
 Command add_view_factors(CLI::App& panelrad);  ///< panelrad viewfactors
+Command add_thermal(CLI::App& panelrad);       ///< panelrad thermal
 
 }  // namespace panelrad::cli

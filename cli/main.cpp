@@ -30,6 +30,7 @@ const char* kUsage =
     "  cube [options]   the paper's cube example (Table 1; --help for options)\n"
     "  solve SCENE [options]   solve an OBJ+MTL or OFF+JSON scene, write CSV/PLY/VTK/PNG (--help)\n"
     "  viewfactors SCENE [options]   view factors between groups of surfaces, write CSV/NPY (--help)\n"
+    "  thermal SCENE --bc FILE [options]   temperatures and heat fluxes, SI units, write CSV/VTK (--help)\n"
     "  version\n"
     "  help [COMMAND]\n";
 
@@ -88,12 +89,14 @@ int main(int argc, char** argv) {
   // One command; a further command name is then an argument of the first (an error).
   panelrad.require_subcommand(0, 1);
   const std::vector<Command> commands = {panelrad::cli::add_check(panelrad), panelrad::cli::add_cube(panelrad),
-                                         panelrad::cli::add_solve(panelrad), panelrad::cli::add_view_factors(panelrad)};
+                                         panelrad::cli::add_solve(panelrad), panelrad::cli::add_view_factors(panelrad),
+                                         panelrad::cli::add_thermal(panelrad)};
   const std::string version_line = "panelrad " + panelrad::version();
   CLI::App* version = panelrad.add_subcommand("version", "the program's version");
   CLI::App* help = panelrad.add_subcommand("help", "the commands, or one command's options");
   std::string help_topic;  // panelrad help COMMAND: that command's usage, as COMMAND --help
-  help->add_option("COMMAND", help_topic)->check(panelrad::cli::one_of({"check", "cube", "solve"}));
+  help->add_option("COMMAND", help_topic)
+      ->check(panelrad::cli::one_of({"check", "cube", "solve", "viewfactors", "thermal"}));
   panelrad.set_version_flag("--version", version_line);
 
   try {

@@ -32,12 +32,14 @@ from ._panelrad import (
     Solver,
     SolverError,
     TextFileError,
+    ThermalSolution,
     __version__,
     load_scene,
     max_threads,
     paper_cube,
     set_threads,
     solve_scene,
+    thermal_solve,
     view_factors,
     ViewFactors,
     write_outputs,
@@ -45,15 +47,18 @@ from ._panelrad import (
 
 _CLASSES = ("ArgumentError", "ArgumentTypeError", "ChannelError", "ChannelSolution", "EnergyBalanceError", "Error", "MeshError", "Operator",
             "ResourceError", "Scene", "SceneFileError", "Solution", "SolveResult", "Solver", "SolverError",
-            "TextFileError", "ViewFactors")
-_FUNCTIONS = ("load_scene", "max_threads", "paper_cube", "set_threads", "solve_scene", "view_factors", "write_outputs")
+            "TextFileError", "ThermalSolution", "ViewFactors")
+_FUNCTIONS = ("load_scene", "max_threads", "paper_cube", "set_threads", "solve_scene", "thermal_solve", "view_factors",
+              "write_outputs")
 # The methods that take arguments (properties take none); __init__ is each class's constructor.
 _METHODS = {
-    "Scene": ("__init__", "set_reflectivity", "set_emission", "reflectivity", "emission"),
+    "Scene": ("__init__", "set_reflectivity", "set_emission", "set_environment", "reflectivity", "emission",
+              "environment"),
     "Solver": ("__init__", "solve", "max_error", "channel_values", "irradiance"),
     "Operator": ("matvec", "matmat", "__matmul__"),
     "Solution": ("__getitem__",),
     "ViewFactors": ("write",),
+    "ThermalSolution": ("write",),
 }
 
 # A parameter of a pybind11 signature line: its name, before ": type" (and "= default").
@@ -146,6 +151,7 @@ __all__ = [
     "Solver",
     "SolverError",
     "TextFileError",
+    "ThermalSolution",
     "ViewFactors",
     "__version__",
     "load_scene",
@@ -153,6 +159,7 @@ __all__ = [
     "paper_cube",
     "set_threads",
     "solve_scene",
+    "thermal_solve",
     "view_factors",
     "write_outputs",
 ]

@@ -12,5 +12,6 @@ void bind_operator(py::module_& m);   // operator_binding.cpp: Operator (H or K_
 void bind_solver(py::module_& m);     // solver_binding.cpp: Solver, SolveResult
 void bind_solution(py::module_& m);   // solution_binding.cpp: solve_scene, Solution, write_outputs
 void bind_view_factors(py::module_& m);  // viewfactors_binding.cpp: view_factors, ViewFactors
+void bind_thermal(py::module_& m);       // thermal_binding.cpp: thermal_solve, ThermalSolution
 
 }  // namespace panelrad::python

@@ -15,6 +15,7 @@ PYBIND11_MODULE(_panelrad, m) {
   bind_solver(m);
   bind_solution(m);
   bind_view_factors(m);
+  bind_thermal(m);
   m.attr("__version__") = panelrad::version();
   m.def("max_threads", &panelrad::max_threads, "Threads used by panelrad's parallel regions (OpenMP).");
   m.def("set_threads", &panelrad::set_threads, py::arg("threads"),

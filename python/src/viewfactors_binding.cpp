@@ -18,8 +18,6 @@
 
 namespace panelrad::python {
 
-namespace {
-
 /// groups: "facet", "object", "material", or a sequence of one name per input facet
 /// (groups_by_name).
 SurfaceGroups surface_groups(const Scene& scene, py::handle groups) {
@@ -39,6 +37,8 @@ SurfaceGroups surface_groups(const Scene& scene, py::handle groups) {
   }
   return groups_by_name(names);
 }
+
+namespace {
 
 /// `value` when the elements were kept (ViewFactorOptions::elements), else None.
 template <class T>

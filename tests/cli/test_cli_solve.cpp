@@ -48,17 +48,7 @@ class CliSolve : public panelrad::testing::CliDirectoryTest {
   }
 };
 
-std::vector<std::vector<std::string>> read_csv(const std::string& file) {
-  std::vector<std::vector<std::string>> rows;
-  std::ifstream in(file);
-  for (std::string line; std::getline(in, line);) {
-    std::vector<std::string> cells;
-    std::stringstream ss(line);
-    for (std::string c; std::getline(ss, c, ',');) cells.push_back(c);
-    rows.push_back(cells);
-  }
-  return rows;
-}
+using panelrad::testing::read_csv;
 
 double energy_mismatch(const std::string& summary, const std::string& channel) {
   std::istringstream in(summary);

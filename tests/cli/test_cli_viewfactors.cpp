@@ -25,17 +25,7 @@ CliRun run(const std::string& args, const std::string& redirect = "2>&1") {
   return panelrad::testing::run_cli(args, redirect);
 }
 
-std::vector<std::vector<std::string>> read_csv(const std::string& path) {
-  std::ifstream in(path);
-  std::vector<std::vector<std::string>> rows;
-  for (std::string line; std::getline(in, line);) {
-    std::vector<std::string> row;
-    std::stringstream s(line);
-    for (std::string field; std::getline(s, field, ',');) row.push_back(field);
-    rows.push_back(row);
-  }
-  return rows;
-}
+using panelrad::testing::read_csv;
 
 class CliViewFactors : public panelrad::testing::CliDirectoryTest {
  protected:

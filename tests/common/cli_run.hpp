@@ -7,7 +7,9 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <string>
+#include <vector>
 #include <sys/wait.h>
 
 namespace panelrad::testing {
@@ -51,6 +53,19 @@ class CliDirectoryTest : public ::testing::Test {
   std::string prefix_;
   std::filesystem::path dir_;
 };
+
+/// The rows of a CSV file, split at every comma (the tests' files quote no comma).
+inline std::vector<std::vector<std::string>> read_csv(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::vector<std::string>> rows;
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> row;
+    std::stringstream s(line);
+    for (std::string field; std::getline(s, field, ',');) row.push_back(field);
+    rows.push_back(row);
+  }
+  return rows;
+}
 
 }  // namespace panelrad::testing
 

@@ -1,5 +1,5 @@
 # Checks that every #include <panelrad/...> points down the layers, never up:
-#   support -> geometry -> quadrature -> lib: scene -> operator -> distributed -> solve -> viewfactors -> io
+#   support -> geometry -> quadrature -> lib: scene -> operator -> distributed -> solve -> viewfactors -> thermal -> io
 #   (and mpi, beside solve, on distributed) -> paper -> cli,
 #   examples, bench, python (on io); and that nothing outside the tests includes the test-only oracles.
 # Run: cmake -DSOURCE_DIR=<project> -P check_layers.cmake (fails with the offending file and line).
@@ -14,7 +14,7 @@ set(layer_folders
   lib/include/panelrad/scene lib/src/scene
   lib/include/panelrad/operator lib/src/operator lib/include/panelrad/distributed lib/src/distributed
   lib/include/panelrad/mpi lib/src/mpi lib/include/panelrad/solve lib/src/solve
-  lib/include/panelrad/viewfactors lib/src/viewfactors
+  lib/include/panelrad/viewfactors lib/src/viewfactors lib/include/panelrad/thermal lib/src/thermal
   lib/include/panelrad/io lib/src/io paper cli examples bench python/src)
 set(allowed_support/include support)
 set(allowed_support/src support)
@@ -34,7 +34,9 @@ set(allowed_lib/include/panelrad/solve ${allowed_lib/src/distributed} solve)
 set(allowed_lib/src/solve ${allowed_lib/include/panelrad/solve})
 set(allowed_lib/include/panelrad/viewfactors ${allowed_lib/src/solve} viewfactors)
 set(allowed_lib/src/viewfactors ${allowed_lib/include/panelrad/viewfactors})
-set(allowed_lib/include/panelrad/io ${allowed_lib/src/viewfactors} io)
+set(allowed_lib/include/panelrad/thermal ${allowed_lib/src/viewfactors} thermal)
+set(allowed_lib/src/thermal ${allowed_lib/include/panelrad/thermal})
+set(allowed_lib/include/panelrad/io ${allowed_lib/src/thermal} io)
 set(allowed_lib/src/io ${allowed_lib/include/panelrad/io})
 set(allowed_paper ${allowed_lib/src/io} paper)
 set(allowed_cli ${allowed_paper} mpi)

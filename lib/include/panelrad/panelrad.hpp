@@ -13,4 +13,5 @@
 #include <panelrad/io/outputs.hpp>
 #include <panelrad/io/view_factor_output.hpp>
 #include <panelrad/viewfactors/view_factors.hpp>
+#include <panelrad/thermal/thermal_solve.hpp>
 #include <panelrad/support/version.hpp>

@@ -1,4 +1,6 @@
 // View factors as CSV and .npy files, written as one set (view_factor_output.hpp).
+#include "csv_fields.hpp"
+
 #include <panelrad/io/view_factor_output.hpp>
 #include <panelrad/io/scene_output.hpp>
 
@@ -12,26 +14,11 @@
 
 namespace panelrad {
 
+using io_detail::csv_field;
+
 namespace {
 
-/// A CSV field: quoted (with inner quotes doubled) when it holds a comma, a quote or a line break,
-/// or starts or ends with a space.
-std::string csv_field(const std::string& s) {
-  const bool quote = s.find_first_of(",\"\r\n") != std::string::npos || (!s.empty() && (s.front() == ' ' || s.back() == ' '));
-  if (!quote) return s;
-  std::string out = "\"";
-  for (const char c : s) {
-    if (c == '"') out += '"';
-    out += c;
-  }
-  return out + "\"";
-}
-
-std::string number(double x) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.17g", x);
-  return buffer;
-}
+std::string number(double x) { return io_detail::g17(x); }
 
 }  // namespace
 
