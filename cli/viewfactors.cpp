@@ -10,7 +10,6 @@
 #include <panelrad/support/resources.hpp>
 #include <panelrad/viewfactors/view_factors.hpp>
 
-#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -132,11 +131,6 @@ int run_view_factors(const CLI::App& app, ViewFactorsCommandLine& line) {
   }
   if (!line.quiet)
     for (const std::string& note : scene->notes()) std::cerr << "panelrad viewfactors: note: " << note << "\n";
-  for (const std::string& target : o.element_targets)
-    if (std::find(groups.names.begin(), groups.names.end(), target) == groups.names.end())
-      throw std::runtime_error(line.scene_path + ": --elements-to '" + target + "' is not a group (--groups " +
-                               line.groups + " gives " + std::to_string(groups.names.size()) + ", the first '" +
-                               groups.names.front() + "')");
   const bool with_elements = o.elements || !o.element_targets.empty();
   for (const std::string& path : view_factor_paths(prefix, o.estimate_error, with_elements)) check_output_path(path);
   const ViewFactors v = compute_view_factors(*scene, groups, o);

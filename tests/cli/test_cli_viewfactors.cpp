@@ -144,7 +144,7 @@ TEST_F(CliViewFactors, StlGroupedBySolid) {
   const CliRun bad = run("viewfactors " + path("cube.stl") + " --groups object --levels 1 --elements-to roof --out " +
                          path("b") + " --quiet");
   EXPECT_EQ(bad.status, 1) << bad.output;
-  EXPECT_NE(bad.output.find("--elements-to 'roof' is not a group"), std::string::npos) << bad.output;
+  EXPECT_NE(bad.output.find("element target 'roof' is not a group"), std::string::npos) << bad.output;
   EXPECT_FALSE(fs::exists(path("b.csv")));
   const auto F = read_csv(path("s.csv"));
   ASSERT_EQ(F.size(), 3u);

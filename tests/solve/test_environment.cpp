@@ -91,7 +91,7 @@ TEST(Environment, AnEnclosedSceneNeverSeesIt) {
     s->set_emissivity(std::vector<double>{1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0});
   }
   lit.set_environment(5.0);
-  EXPECT_FALSE(lit.sees_environment());
+  EXPECT_FALSE(lit.sees_environment(0));
   const SceneSolution a = solve_scene(lit, options("dense", 1)), b = solve_scene(dark, options("dense", 1));
   EXPECT_EQ(a.channels[0].radiosity, b.channels[0].radiosity);
   EXPECT_EQ(a.channels[0].irradiance, b.channels[0].irradiance);

@@ -181,9 +181,7 @@ void Scene::set_environment(double radiosity, std::size_t c) {
 
 double Scene::environment(std::size_t c) const { return channel(c).environment; }
 
-bool Scene::sees_environment() const {
-  return !enclosed_ && std::any_of(data_.begin(), data_.end(), [](const Channel& ch) { return ch.environment > 0; });
-}
+bool Scene::sees_environment(std::size_t c) const { return channel(c).environment > 0 && !enclosed_; }
 
 void Scene::set_manufactured_solution(SurfaceFunction u, double rel_tol) {
   if (channels_.size() != 1)

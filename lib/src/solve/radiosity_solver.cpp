@@ -362,15 +362,14 @@ Eigen::VectorXd RadiositySolver::sky() const {
 }
 
 Eigen::VectorXd RadiositySolver::environment_light(std::size_t channel) const {
-  const double environment = scene_.environment(channel);
-  if (environment == 0 || scene_.enclosed()) return Eigen::VectorXd::Zero(info_.n);
-  return environment * uncovered();
+  if (!scene_.sees_environment(channel)) return Eigen::VectorXd::Zero(info_.n);
+  return scene_.environment(channel) * uncovered();
 }
 
 // E + rho u_env s: the surfaces' emission and the environment's light they reflect.
 Collocation::ChannelValues RadiositySolver::right_hand_side(std::size_t channel) const {
   Collocation::ChannelValues v = channel_values(channel);
-  if (scene_.environment(channel) > 0 && !scene_.enclosed()) v.E += v.rho.cwiseProduct(environment_light(channel));
+  if (scene_.sees_environment(channel)) v.E += v.rho.cwiseProduct(environment_light(channel));
   return v;
 }
 
@@ -503,7 +502,7 @@ std::vector<ChannelSolve> RadiositySolver::solve_channels(const std::vector<std:
     throw ResourceError(out_of_memory_message(stage_, static_cast<double>(info_.n), stage_bytes_));
   }
   for (std::size_t s = 0; s < channels.size(); ++s)  // the light arriving from the environment too
-    if (scene_.environment(channels[s]) > 0 && !scene_.enclosed()) out[s].irradiance += environment_light(channels[s]);
+    if (scene_.sees_environment(channels[s])) out[s].irradiance += environment_light(channels[s]);
   return out;
 }
 

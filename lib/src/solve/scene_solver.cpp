@@ -89,9 +89,6 @@ int identical_earlier_channel(const Scene& scene, const ElementField& field, std
   return -1;
 }
 
-// The environment shines into channel c (Scene::set_environment).
-bool lit_by_environment(const Scene& scene, std::size_t c) { return scene.environment(c) > 0 && !scene.enclosed(); }
-
 // The energy balance of channel c: emitted power sum A_i E_i, the environment's power arriving
 // sum A_i u_env s_i, absorbed power sum A_i (1 - rho_i) H_i, and, in a scene that is not closed,
 // the power that reaches no front side. Of the light leaving dA_i a fraction H_ij (the
@@ -101,7 +98,7 @@ void energy_balance(const Scene& scene, const ElementField& field, std::size_t c
                     ChannelSolution& ch) {
   const Eigen::VectorXd& rho = field.rho[c];
   const Eigen::VectorXd& E = field.emission[c];
-  const double environment = lit_by_environment(scene, c) ? scene.environment(c) : 0;
+  const double environment = scene.sees_environment(c) ? scene.environment(c) : 0;
   double escaped = 0;
   for (Index i = 0; i < rho.size(); ++i) {
     const double a = field.area[static_cast<std::size_t>(i)];
@@ -128,7 +125,7 @@ bool channel_without_solve(const Scene& scene, const SceneSolution& out, std::si
     say("channel " + ch.name + ": same rho and E as channel " + ch.shared_with + ", solution shared");
     return true;
   }
-  if (field.emission[c].lpNorm<Eigen::Infinity>() == 0 && !lit_by_environment(scene, c)) {
+  if (field.emission[c].lpNorm<Eigen::Infinity>() == 0 && !scene.sees_environment(c)) {
     ch.radiosity = Eigen::VectorXd::Zero(out.n);  // nothing emitted: u = 0 exactly
     ch.irradiance = Eigen::VectorXd::Zero(out.n);
     ch.solver = "none (E = 0 in this channel: u = 0)";

@@ -93,8 +93,8 @@ class Scene {
   /// counts as environment; a sheet seen from both sides is given as a thin closed solid.
   void set_environment(double radiosity, std::size_t channel = 0);
   double environment(std::size_t channel = 0) const;
-  /// Some channel has an environment above 0 and the scene is not enclosed.
-  bool sees_environment() const;
+  /// The scene sees its environment in `channel`: one above 0, and the scene is not enclosed.
+  bool sees_environment(std::size_t channel) const;
 
   /// E := u - K u, with K u integrated to relative accuracy `rel_tol` over the exact surface.
   /// Scalar convex scenes only (one channel, V = 1; std::logic_error otherwise). E may then be negative
