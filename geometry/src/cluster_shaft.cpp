@@ -109,4 +109,33 @@ bool may_block(const FaceData& f, const ClusterShaft& s, double margin) {
   return true;
 }
 
+bool may_enter(const FaceData& f, const ClusterShaft& s, double margin) {
+  const double gap = 2 * margin;
+  if ((f.hi.array() < s.lo.array() - gap).any() || (f.lo.array() > s.hi.array() + gap).any()) return false;
+  const auto [lo, hi] = extent(s.x.data(), 6, f.v[0], f.n);
+  if (lo > gap || hi < -gap) return false;  // the shaft on one side of the face's plane
+  for (int k = 0; k < s.planes; ++k) {
+    const Vec3& n = s.out_n[static_cast<std::size_t>(k)];
+    const double d = s.out_d[static_cast<std::size_t>(k)];
+    if (std::min({n.dot(f.v[0]), n.dot(f.v[1]), n.dot(f.v[2])}) - d > gap) return false;
+  }
+  return true;
+}
+
+bool covers_cluster_shaft(const FaceData& f, const ClusterShaft& s, double margin) {
+  const double k = kCoverMargins * margin;
+  std::array<double, 6> d{};
+  for (std::size_t i = 0; i < 6; ++i) d[i] = (s.x[i] - f.v[0]).dot(f.n);
+  const double side = d[0] > 0 ? 1.0 : -1.0;
+  for (std::size_t i = 0; i < 6; ++i)
+    if (!((i < 3 ? side : -side) * d[i] > k)) return false;  // sigma on one side, tau on the other
+  for (std::size_t i = 0; i < 3; ++i)
+    for (std::size_t j = 3; j < 6; ++j) {
+      const Vec3 X = s.x[i] + (d[i] / (d[i] - d[j])) * (s.x[j] - s.x[i]);
+      for (std::size_t e = 0; e < 3; ++e)
+        if (!((X - f.v[e]).dot(f.edge_in[e]) > k)) return false;
+    }
+  return true;
+}
+
 }  // namespace panelrad::geometry::occluder_detail

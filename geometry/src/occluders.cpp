@@ -77,6 +77,44 @@ bool segment_meets_box(const Vec3& P, const Vec3& Q, const CGAL::Bbox_3& b, doub
 // Shafts to whole faces are long, so the tree prunes little below ~800 faces.
 constexpr Index kLinearScanFaces = 512;
 
+/// The largest signed distance (x - o).n over the corners x of the box b: the corner on the side
+/// of n in each coordinate.
+double box_max_distance(const CGAL::Bbox_3& b, const Vec3& o, const Vec3& n) {
+  double d = 0;
+  for (int i = 0; i < 3; ++i) d += n[i] * ((n[i] > 0 ? b.max(i) : b.min(i)) - o[i]);
+  return d;
+}
+
+/// Shaft culling of a node of the AABB tree: false when the node's box lies outside one of the
+/// shaft's five planes (tau's plane, P's plane, the three planes through P and tau's edges) by the
+/// margin, so that may_meet refuses each of its faces. Conservative against the rounding: a node
+/// is refused only when its box's largest distance comes out at most half the margin; the box's
+/// largest distance bounds each face corner's, and the two computed distances differ from the exact
+/// ones by a few eps max|x|, at most an eighth of the margin (visibility_margin), so every face of a
+/// refused node has its computed max_distance below the margin too.
+bool box_may_meet(const CGAL::Bbox_3& b, const Shaft& s) {
+  const double m = 0.5 * s.margin;
+  if (box_max_distance(b, s.t[0], s.nQ) <= m || box_max_distance(b, s.P, s.nP) <= m) return false;
+  for (int i = 0; i < 3; ++i)
+    if (box_max_distance(b, s.P, s.side_n[static_cast<std::size_t>(i)]) <= m) return false;
+  return true;
+}
+
+/// The same for the cluster shaft: false when the box lies beyond one of its supporting planes
+/// (outer normal out_n, n.x <= out_d on the hull) by at least `beyond`: the smallest n.x - out_d
+/// over the box's corners bounds its faces' corners'. For may_block (which refuses a face whose
+/// corners all lie at least -margin beyond) `beyond` is -margin / 2, for may_enter (more than 2
+/// margins) 3 margins: the rounding of the two computed distances is below margin / 4 (as above).
+bool box_within_planes(const CGAL::Bbox_3& b, const ClusterShaft& s, double beyond) {
+  for (int k = 0; k < s.planes; ++k) {
+    const Vec3& n = s.out_n[static_cast<std::size_t>(k)];
+    double lowest = 0;  // the smallest n.x over the box's corners
+    for (int i = 0; i < 3; ++i) lowest += n[i] * (n[i] > 0 ? b.min(i) : b.max(i));
+    if (lowest - s.out_d[static_cast<std::size_t>(k)] >= beyond) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 struct Occluders::Impl {
@@ -116,20 +154,28 @@ struct Occluders::Impl {
   };
 
   /// Depth-first search of the tree for the faces that may meet a shaft: a node is entered when its
-  /// box meets the shaft's box widened by the margin; a face is kept when may_meet holds (whose first
-  /// test is the same widened box test, so the search finds exactly what a scan of every face finds).
+  /// box meets the shaft's box widened by the margin and is not outside one of the shaft's planes
+  /// (box_may_meet); a face is kept when may_meet holds (whose first tests are the same, so the
+  /// search finds exactly what a scan of every face finds).
+  /// With `stop_when_covered`, the search stops at the first face that alone hides tau
+  /// (covers_shaft), setting `covered`.
   struct ShaftSearch {
     const Impl* impl;
     const Shaft* shaft;
     std::vector<Index>* out;
-    bool go_further() const { return true; }
+    bool stop_when_covered = false;
+    Index covered = -1;  // the face that hides tau
+    bool go_further() const { return covered < 0; }
     void intersection(const CGAL::Bbox_3&, const Primitive& p) {
       const auto t = static_cast<Index>(p.id() - impl->cgal_triangles.begin());
-      if (may_meet(impl->faces[static_cast<std::size_t>(t)], *shaft)) out->push_back(t);
+      const FaceData& f = impl->faces[static_cast<std::size_t>(t)];
+      if (!may_meet(f, *shaft)) return;
+      if (stop_when_covered && covers_shaft(f, *shaft)) covered = t;
+      else out->push_back(t);
     }
     template <class Node>
     bool do_intersect(const CGAL::Bbox_3& box, const Node& node) const {
-      return CGAL::do_overlap(box, node.bbox());
+      return CGAL::do_overlap(box, node.bbox()) && box_may_meet(node.bbox(), *shaft);
     }
   };
 
@@ -146,9 +192,56 @@ struct Occluders::Impl {
     }
     template <class Node>
     bool do_intersect(const CGAL::Bbox_3& box, const Node& node) const {
-      return CGAL::do_overlap(box, node.bbox());
+      return CGAL::do_overlap(box, node.bbox()) && box_within_planes(node.bbox(), *shaft, -0.5 * impl->margin);
     }
   };
+
+  /// Depth-first search of the tree for the faces that may enter the cluster shaft (may_enter),
+  /// stopping at the first that every segment crosses (covers_cluster_shaft).
+  struct ClusterEntrySearch {
+    const Impl* impl;
+    const ClusterShaft* shaft;
+    std::vector<Index>* out;
+    Index covered = -1;
+    bool go_further() const { return covered < 0; }
+    void intersection(const CGAL::Bbox_3&, const Primitive& p) {
+      const auto t = static_cast<Index>(p.id() - impl->cgal_triangles.begin());
+      const FaceData& f = impl->faces[static_cast<std::size_t>(t)];
+      if (!may_enter(f, *shaft, impl->margin)) return;
+      if (covers_cluster_shaft(f, *shaft, impl->margin)) covered = t;
+      else out->push_back(t);
+    }
+    template <class Node>
+    bool do_intersect(const CGAL::Bbox_3& box, const Node& node) const {
+      return CGAL::do_overlap(box, node.bbox()) && box_within_planes(node.bbox(), *shaft, 3 * impl->margin);
+    }
+  };
+
+  /// The faces that may enter the cluster shaft into `out`, ascending; the face that every segment
+  /// crosses as soon as one is found (`out` then cleared), -1 otherwise.
+  Index collect_entering(const ClusterShaft& s, std::vector<Index>& out) const {
+    out.clear();
+    const Index n = static_cast<Index>(faces.size());
+    if (n <= kLinearScanFaces) {
+      for (Index t = 0; t < n; ++t) {
+        const FaceData& f = faces[static_cast<std::size_t>(t)];
+        if (!may_enter(f, s, margin)) continue;
+        if (covers_cluster_shaft(f, s, margin)) {
+          out.clear();
+          return t;
+        }
+        out.push_back(t);
+      }
+      return -1;
+    }
+    const double m = 3 * margin;
+    const CGAL::Bbox_3 box(s.lo.x() - m, s.lo.y() - m, s.lo.z() - m, s.hi.x() + m, s.hi.y() + m, s.hi.z() + m);
+    ClusterEntrySearch search{this, &s, &out};
+    tree.traversal(box, search);
+    if (search.covered >= 0) out.clear();
+    else std::sort(out.begin(), out.end());
+    return search.covered;
+  }
 
   bool any_may_block(const ClusterShaft& s) const {
     if (faces.size() <= static_cast<std::size_t>(kLinearScanFaces)) {
@@ -163,19 +256,30 @@ struct Occluders::Impl {
     return search.blocked;
   }
 
-  void collect(const Shaft& s, std::vector<Index>& out) const {
+  /// The faces that may meet the shaft into `out`, ascending. With `stop_when_covered`, the face
+  /// that alone hides tau (covers_shaft) as soon as one is found, `out` then cleared; -1 otherwise.
+  Index collect(const Shaft& s, std::vector<Index>& out, bool stop_when_covered = false) const {
     out.clear();
     const Index n = static_cast<Index>(faces.size());
     if (n <= kLinearScanFaces) {
-      for (Index t = 0; t < n; ++t)
-        if (may_meet(faces[static_cast<std::size_t>(t)], s)) out.push_back(t);
-      return;
+      for (Index t = 0; t < n; ++t) {
+        const FaceData& f = faces[static_cast<std::size_t>(t)];
+        if (!may_meet(f, s)) continue;
+        if (stop_when_covered && covers_shaft(f, s)) {
+          out.clear();
+          return t;
+        }
+        out.push_back(t);
+      }
+      return -1;
     }
     const double m = margin;
     const CGAL::Bbox_3 box(s.lo.x() - m, s.lo.y() - m, s.lo.z() - m, s.hi.x() + m, s.hi.y() + m, s.hi.z() + m);
-    ShaftSearch search{this, &s, &out};
+    ShaftSearch search{this, &s, &out, stop_when_covered};
     tree.traversal(box, search);
-    std::sort(out.begin(), out.end());
+    if (search.covered >= 0) out.clear();
+    else std::sort(out.begin(), out.end());
+    return search.covered;
   }
 
   /// The shadows of the faces of `among` that meet the shaft, into `meeting` and `shadows`.
@@ -329,12 +433,69 @@ void Occluders::candidates(const Vec3& P, const Vec3& nP, const std::array<Vec3,
   impl_->collect(s, out);
 }
 
+bool Occluders::hidden_by_a_face(const Vec3& P, const Vec3& nP, const std::array<Vec3, 3>& tau, const Vec3& nQ,
+                                 std::vector<Index>& out, BlockerHints* hints) const {
+  out.clear();
+  Shaft s;
+  if (!make_shaft(P, nP, tau, nQ, impl_->margin, s) || s.grazing) return false;
+  complete_shaft(s);
+  if (hints && !s.straddles)
+    for (const Index t : hints->face) {
+      if (t < 0 || t >= size()) continue;
+      const FaceData& f = impl_->faces[static_cast<std::size_t>(t)];
+      if (may_meet(f, s) && covers_shaft(f, s)) {
+        hints->remember(t);
+        return true;
+      }
+    }
+  const Index covering = impl_->collect(s, out, true);
+  if (covering < 0) return false;
+  if (hints) hints->remember(covering);
+  return true;
+}
+
 ShaftClass Occluders::classify_clusters(const std::array<Vec3, 3>& sigma, const Vec3& nS,
                                         const std::array<Vec3, 3>& tau, const Vec3& nT, bool faces) const {
   ClusterShaft s;
   const ShaftClass planes = make_cluster_shaft(sigma, nS, tau, nT, impl_->margin, s);
   if (planes != ShaftClass::full || !faces) return planes;
   return impl_->any_may_block(s) ? ShaftClass::partial : ShaftClass::full;
+}
+
+bool Occluders::hidden_by_one_of(const Vec3& P, const Vec3& nP, const std::array<Vec3, 3>& tau, const Vec3& nQ,
+                                 std::span<const Index> among, BlockerHints* hints) const {
+  Shaft s;
+  if (!make_shaft(P, nP, tau, nQ, impl_->margin, s) || s.grazing || s.straddles) return false;
+  complete_shaft(s);
+  const auto covering = [&](Index t) {
+    if (t < 0 || t >= size()) return false;
+    const FaceData& f = impl_->faces[static_cast<std::size_t>(t)];
+    return may_meet(f, s) && covers_shaft(f, s);
+  };
+  if (hints)
+    for (const Index t : hints->face)
+      if (covering(t)) {
+        hints->remember(t);
+        return true;
+      }
+  for (const Index t : among)
+    if (covering(t)) {
+      if (hints) hints->remember(t);
+      return true;
+    }
+  return false;
+}
+
+ClusterSight Occluders::cluster_candidates(const std::array<Vec3, 3>& sigma, const Vec3& nS,
+                                           const std::array<Vec3, 3>& tau, const Vec3& nT,
+                                           std::vector<Index>& out) const {
+  out.clear();
+  ClusterShaft s;
+  const ShaftClass planes = make_cluster_shaft(sigma, nS, tau, nT, impl_->margin, s);
+  if (planes == ShaftClass::hidden) return {true, false};
+  if (planes != ShaftClass::full) return {false, false};
+  if (impl_->collect_entering(s, out) >= 0) return {true, false};
+  return {false, true};
 }
 
 ShaftClass Occluders::classify(const Vec3& P, const Vec3& nP, const std::array<Vec3, 3>& tau, const Vec3& nQ,

@@ -66,6 +66,17 @@ void complete_shaft(Shaft& s);
 /// planes through P and tau's edges) up to the margin, or its plane passes through P (edge-on).
 bool may_meet(const FaceData& f, const Shaft& s);
 
+/// True when the face alone hides all of tau from P: its plane separates P from every corner of
+/// tau, and every corner lies inside the three planes through P and the face's edges, each by
+/// kCoverMargins margins. Every segment from P to a point of tau (a convex combination of the
+/// corners, inside the cone from P over the face and beyond its plane) then crosses the face's
+/// interior. False for a shaft that straddles P's plane or grazes tau's.
+bool covers_shaft(const FaceData& f, const Shaft& s);
+
+/// The margins by which covers_shaft asks its separations to hold: a face that covers the shaft by
+/// less is left to the shadow subtraction.
+inline constexpr double kCoverMargins = 4;
+
 /// The shaft between two triangles sigma and tau: conv(sigma, tau), which holds every segment PQ
 /// with P in sigma and Q in tau, given by its box and its supporting planes among the planes of
 /// sigma and tau and those through an edge of one and a corner of the other (every face of the
@@ -77,6 +88,17 @@ struct ClusterShaft {
   int planes = 0;
   Vec3 lo, hi;                       ///< bounding box of the six corners
 };
+
+/// False when the face lies farther than two margins from conv(sigma, tau) along its box's axes,
+/// its own normal or a supporting plane of the shaft: it then meets no point shaft conv(P, tau)
+/// of a P of sigma, and may_meet refuses it for each (the point shaft lies in the cluster shaft).
+/// Conservative: a superset of the faces that may_meet accepts for some P of sigma.
+bool may_enter(const FaceData& f, const ClusterShaft& s, double margin);
+
+/// True when every segment from sigma to tau crosses the face's interior: its plane separates
+/// sigma's corners from tau's, and the nine crossings of the segments between their corners (whose
+/// convex hull holds every crossing) lie inside its edges, each by kCoverMargins margins.
+bool covers_cluster_shaft(const FaceData& f, const ClusterShaft& s, double margin);
 
 /// The class of tau seen from every point of sigma by the planes alone (nS, nT their front
 /// normals): hidden when tau lies on or behind sigma's plane (its corners within the margin in

@@ -119,6 +119,27 @@ bool may_meet(const FaceData& f, const Shaft& s) {
   return true;
 }
 
+bool covers_shaft(const FaceData& f, const Shaft& s) {
+  if (s.straddles || s.grazing) return false;
+  const double k = kCoverMargins * s.margin;
+  const double dP = (s.P - f.v[0]).dot(f.n);
+  if (!(std::abs(dP) > k)) return false;
+  for (const Vec3& t : s.t) {
+    const double dt = (t - f.v[0]).dot(f.n);
+    if (!(dP > 0 ? dt < -k : dt > k)) return false;  // tau's corner beyond the face's plane
+  }
+  for (int e = 0; e < 3; ++e) {
+    const Vec3 a = f.v[static_cast<std::size_t>(e)] - s.P, b = f.v[static_cast<std::size_t>((e + 1) % 3)] - s.P;
+    Vec3 n = a.cross(b);
+    if (n.dot(f.v[static_cast<std::size_t>((e + 2) % 3)] - s.P) < 0) n = -n;
+    const double len = n.norm();
+    if (!(len > 0)) return false;
+    for (const Vec3& t : s.t)
+      if (!((t - s.P).dot(n) > k * len)) return false;  // outside the cone over the face, or too near its side
+  }
+  return true;
+}
+
 double polygon_area(const Vec2* p, int n) {
   double a = 0;
   for (int i = 0; i < n; ++i) {

@@ -22,6 +22,19 @@ using geometry::Index;
 using geometry::TriangleMesh;
 using geometry::Vec3;
 
+/// Triangles given one by one, each its own facet, with corners of their own (nothing shared).
+inline TriangleMesh triangle_soup(const std::vector<std::array<Vec3, 3>>& tris, std::string source) {
+  TriangleMesh m;
+  m.source = std::move(source);
+  for (const auto& t : tris) {
+    const Index base = static_cast<Index>(m.vertices.size());
+    m.vertices.insert(m.vertices.end(), t.begin(), t.end());
+    m.triangles.push_back({base, base + 1, base + 2});
+    m.facet_of_triangle.push_back(m.num_facets++);
+  }
+  return m;
+}
+
 /// The index of a vertex at exactly `p` in `mesh`, appended when there is none.
 inline Index shared_vertex(TriangleMesh& mesh, const Vec3& p) {
   for (std::size_t i = 0; i < mesh.vertices.size(); ++i)

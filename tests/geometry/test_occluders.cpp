@@ -13,6 +13,8 @@
 #include <CGAL/Polygon_with_holes_2.h>
 
 #include <Eigen/Geometry>
+#include "../common/occluded_scenes.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -29,15 +31,7 @@ using Tri = std::array<Vec3, 3>;
 using panelrad::parallel_for;
 
 TriangleMesh mesh_of(const std::vector<Tri>& tris) {
-  TriangleMesh m;
-  m.source = "occluder test scene";
-  for (const Tri& t : tris) {
-    const Index base = static_cast<Index>(m.vertices.size());
-    m.vertices.insert(m.vertices.end(), t.begin(), t.end());
-    m.triangles.push_back({base, base + 1, base + 2});
-    m.facet_of_triangle.push_back(m.num_facets++);
-  }
-  return m;
+  return panelrad::testing::triangle_soup(tris, "occluder test scene");
 }
 
 /// The two triangles of the axis-aligned rectangle [x0, x1] x [y0, y1] at height z, split along

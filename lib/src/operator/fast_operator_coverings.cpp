@@ -129,6 +129,11 @@ void FastOperator::cover_row(Index i, double rho, CoveringLists& lists, Covering
     tally.skipped += static_cast<std::size_t>(targets_->coplanar_roots[static_cast<std::size_t>(i >> (2 * L))]);
   }
   if (options_.occluders) {
+    // P's sight cluster: its ancestor kSightLevels up (at most 4^kSightLevels points, consecutive
+    // rows), which decides each root's visibility once for all its points (cluster_sight.hpp).
+    const int ls = std::max(0, L - kSightLevels);
+    lists.scratch.sight.begin((std::int64_t{ls} << 48) + (i >> (2 * (L - ls))),
+                              L > 0 ? &tree.cluster(ls, i >> (2 * (L - ls))) : nullptr, tree.num_roots());
     cover_visible(
         tree, *options_.occluders, P, nP, tree.plane(L, i), options_.eta, lists.integrate_near, add_far,
         [&](Index e, double value) {

@@ -22,6 +22,7 @@
 #include <panelrad/geometry/occluders.hpp>
 #include <panelrad/operator/near_field.hpp>
 
+#include "cluster_sight.hpp"
 #include "target_clusters.hpp"
 
 #include <array>
@@ -77,13 +78,37 @@ struct VisibleCoveringScratch {
   geometry::Index root = -1;    // the root of `plane` for starts below the roots
   geometry::ShaftClass root_class = geometry::ShaftClass::full;
   std::size_t root_shadows = 0;  // pool[0, root_shadows): all the root's shadows
+  geometry::BlockerHints blockers;  // the faces that last hid a whole root (kept from row to row)
+  ClusterSightCache sight;          // the roots as seen from P's sight cluster (inactive: none)
 };
+
+/// The candidate faces of root r for P, into `among`; false when r is hidden from P: from all of
+/// P's sight cluster at once (s.sight, cluster_sight.hpp), or because one face alone hides it
+/// (Occluders::hidden_by_a_face / hidden_by_one_of), before any shadow is cast. The candidates
+/// are the sight cluster's list for r when it has one, else P's own (into s.meeting).
+inline bool root_candidates(const geometry::ClusterTree& tree, const geometry::Occluders& occluders, const Vec3& P,
+                            const Vec3& nP, geometry::Index r, VisibleCoveringScratch& s,
+                            std::span<const geometry::Index>& among) {
+  const geometry::Cluster& root = tree.cluster(0, r);
+  if (s.sight.active()) {
+    const RootSight sight = s.sight.of(tree, occluders, r);
+    if (sight.hidden) return false;
+    if (sight.listed) {
+      among = sight.faces;
+      return !occluders.hidden_by_one_of(P, nP, root.vertex, root.normal, among, &s.blockers);
+    }
+  }
+  if (occluders.hidden_by_a_face(P, nP, root.vertex, root.normal, s.meeting, &s.blockers)) return false;
+  among = s.meeting;
+  return true;
+}
 
 /// The class of a start of the walk (a root, or a cluster below P's target clusters): a root by
 /// its own shaft, its shadows cast into s.plane (its children meet at most those: s.meeting becomes
 /// all of them); a start below a root against the shadows cast on its root, cast once for the
 /// starts of that root (they come grouped by root; pool[0, root_shadows) lists them all). The
-/// visible part into s.part at the elements.
+/// visible part into s.part at the elements. A root found hidden by root_candidates is hidden
+/// with every start below it.
 inline geometry::ShaftClass classify_start(const geometry::ClusterTree& tree, const geometry::Occluders& occluders,
                                            const Vec3& P, const Vec3& nP, int level, geometry::Index k,
                                            VisibleCoveringScratch& s) {
@@ -91,10 +116,11 @@ inline geometry::ShaftClass classify_start(const geometry::ClusterTree& tree, co
   using geometry::ShaftClass;
   const geometry::Cluster& c = tree.cluster(level, k);
   geometry::VisiblePart* part = level == tree.finest_level() ? &s.part : nullptr;
+  std::span<const Index> among;
   if (level == 0) {
     s.root = -1;  // s.plane is this root's now, for its own subtree
-    occluders.candidates(P, nP, c.vertex, c.normal, s.meeting);
-    const ShaftClass cls = occluders.classify(P, nP, c.vertex, c.normal, s.meeting, s.plane, part);
+    if (!root_candidates(tree, occluders, P, nP, k, s, among)) return ShaftClass::hidden;
+    const ShaftClass cls = occluders.classify(P, nP, c.vertex, c.normal, among, s.plane, part);
     s.meeting.resize(s.plane.shadows.size());
     for (std::size_t j = 0; j < s.meeting.size(); ++j) s.meeting[j] = static_cast<Index>(j);
     return cls;
@@ -102,9 +128,14 @@ inline geometry::ShaftClass classify_start(const geometry::ClusterTree& tree, co
   const Index root = k >> (2 * level);
   if (root != s.root) {
     s.root = root;
+    if (!root_candidates(tree, occluders, P, nP, root, s, among)) {
+      s.root_class = ShaftClass::hidden;  // and so is every start below it
+      s.pool.clear();
+      s.root_shadows = 0;
+      return s.root_class;
+    }
     const geometry::Cluster& r = tree.cluster(0, root);
-    occluders.candidates(P, nP, r.vertex, r.normal, s.meeting);
-    s.root_class = occluders.classify(P, nP, r.vertex, r.normal, s.meeting, s.plane, nullptr);
+    s.root_class = occluders.classify(P, nP, r.vertex, r.normal, among, s.plane, nullptr);
     s.pool.resize(s.plane.shadows.size());  // the subtrees of the previous root are done
     for (std::size_t j = 0; j < s.pool.size(); ++j) s.pool[j] = static_cast<Index>(j);
     s.root_shadows = s.pool.size();

@@ -112,6 +112,29 @@ struct ShadowPlane {
   std::vector<Index> faces;           ///< the face of each shadow (in the order of the candidates)
 };
 
+/// The faces that last hid a whole triangle from a point (Occluders::hidden_by_a_face), most recent
+/// first: tried before the search, as the face that hid one triangle from a point often hides the
+/// next one, or the same triangle from the next point. One per thread; the answers do not depend
+/// on it, only their cost.
+struct BlockerHints {
+  std::array<Index, 4> face{-1, -1, -1, -1};
+  void remember(Index f) {
+    if (face[0] == f) return;
+    Index carried = f;
+    for (Index& slot : face) {
+      std::swap(slot, carried);
+      if (carried == f) break;
+    }
+  }
+};
+
+/// What the points of a cluster sigma see of a triangle tau, decided once for all of them
+/// (Occluders::cluster_candidates).
+struct ClusterSight {
+  bool hidden = false;  ///< tau is hidden from every point of sigma
+  bool listed = false;  ///< the faces listed hold every point's candidates
+};
+
 /// The scene's faces as occluders, with the queries of the fast product and of the dense reference.
 /// Thread-safe: every query is const and uses no shared mutable state.
 class Occluders {
@@ -138,6 +161,36 @@ class Occluders {
   /// them, same result).
   void candidates(const Vec3& P, const Vec3& nP, const std::array<Vec3, 3>& tau, const Vec3& nQ,
                   std::vector<Index>& out) const;
+
+  /// True when one face alone hides all of tau from P: every segment from P to tau crosses its
+  /// interior, by a few margins of the rounding policy (tau is then hidden, as classify would find
+  /// by subtracting that face's shadow, which covers tau); `out` is cleared. Otherwise false, with
+  /// `out` the candidates, as candidates() gives them. The search stops at the first such face, so
+  /// that the shadows of the others are never cast: in a scene of many solids most faces a point
+  /// could see are hidden behind a nearer one.
+  /// `hints`, when given, are tried first and updated.
+  bool hidden_by_a_face(const Vec3& P, const Vec3& nP, const std::array<Vec3, 3>& tau, const Vec3& nQ,
+                        std::vector<Index>& out, BlockerHints* hints = nullptr) const;
+
+  /// hidden_by_a_face, with the faces looked at being `among` (holding every face that meets P's
+  /// shaft to tau, such as cluster_candidates lists): true when one of them, or of the hints, alone
+  /// hides all of tau from P. The same answer as hidden_by_a_face, without a search of the tree.
+  bool hidden_by_one_of(const Vec3& P, const Vec3& nP, const std::array<Vec3, 3>& tau, const Vec3& nQ,
+                        std::span<const Index> among, BlockerHints* hints = nullptr) const;
+
+  /// For every point of a cluster sigma (a triangle, front normal nS) at once, what it sees of
+  /// tau: hidden, when the planes hide tau from each point (as make_shaft decides for each) or
+  /// one face is crossed by every segment from sigma to tau (by kCoverMargins margins); else
+  /// listed, when `out` (ascending) holds every face that comes within two margins of the shaft
+  /// conv(sigma, tau), which holds each point's shaft conv(P, tau): every face that meets P's
+  /// shaft, for every P of sigma (candidates(P, tau) may hold more: faces near the shaft that pass
+  /// each of its plane tests), so that classify against `out` is classify against P's candidates,
+  /// bit for bit (its shadows are those of the faces that meet P's shaft, in the same order), and
+  /// hidden_by_one_of against `out` is hidden_by_a_face; empty when no face comes that close.
+  /// Neither when sigma and tau cross each other's planes (each point then finds its own
+  /// candidates).
+  ClusterSight cluster_candidates(const std::array<Vec3, 3>& sigma, const Vec3& nS, const std::array<Vec3, 3>& tau,
+                                  const Vec3& nT, std::vector<Index>& out) const;
 
   /// Classifies tau as seen from P against the occluders `among` (candidates of tau or of a
   /// triangle containing tau: the shaft of a sub-triangle lies in its parent's). `meeting` is
