@@ -43,7 +43,7 @@ const char* kViewFactorsUsage =
     "  by how much it moved. Writes PREFIX.csv (per group: area, F to every group, and 1 - sum_J F_IJ:\n"
     "  the sky view factor of an open scene, the closure defect of an enclosed one), PREFIX_error.csv\n"
     "  (the estimates), PREFIX.npy (F as float64, numpy.load) and with --elements PREFIX_elements.csv\n"
-    "  and PREFIX_elements.vtk (per element its group, centroid, area and sky view factor, and with\n"
+    "  PREFIX_elements.vtk and PREFIX_elements.ply (per element its group, centroid, area and sky view factor, and with\n"
     "  --elements-to GROUP, repeatable, its view factor to that group); PREFIX defaults to the scene's name\n"
     "  with '_viewfactors' in the current directory. A summary goes to stdout.\n"
     "  Exit status: 0 written; 1 invalid input or failed run (nothing written); 2 usage error.\n";

@@ -132,7 +132,7 @@ the radiation leaving group I diffusely that reaches group J directly.
           },
           py::arg("prefix"),
           "Writes PREFIX.csv, PREFIX_error.csv (with the estimates), PREFIX.npy and, with the elements kept, "
-          "PREFIX_elements.csv and PREFIX_elements.vtk, all or none; returns the paths.")
+          "PREFIX_elements.csv, PREFIX_elements.vtk and PREFIX_elements.ply, all or none; returns the paths.")
       .def("__repr__", [](const ViewFactors& v) {
         return "<panelrad.ViewFactors: " + std::to_string(v.names.size()) + " groups, level " + std::to_string(v.level) +
                ", n " + std::to_string(v.n) + ", " + v.method + ">";

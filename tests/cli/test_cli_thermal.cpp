@@ -8,6 +8,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -62,6 +64,27 @@ TEST_F(CliThermal, ShippedRoomBalancesAndAdiabaticWallsCarryNoHeat) {
   EXPECT_EQ(elements[0], (std::vector<std::string>{"element", "facet", "group", "x", "y", "z", "area_m2", "J_W_m2",
                                                    "H_W_m2", "q_W_m2", "T_K"}));
   EXPECT_TRUE(fs::exists(path("room.vtk")));
+  // The PLY carries the same temperatures, face by face, bit for bit.
+  std::ifstream ply(path("room.ply"));
+  std::string line;
+  std::size_t faces = 0, vertices = 0;
+  bool has_T = false;
+  while (std::getline(ply, line) && line != "end_header") {
+    if (line.rfind("element vertex ", 0) == 0) vertices = std::stoul(line.substr(15));
+    if (line.rfind("element face ", 0) == 0) faces = std::stoul(line.substr(13));
+    if (line == "property double T_K") has_T = true;
+  }
+  ASSERT_EQ(faces, 24u * 64);
+  EXPECT_TRUE(has_T);
+  for (std::size_t k = 0; k < vertices; ++k) std::getline(ply, line);
+  for (std::size_t i = 0; i < faces; ++i) {
+    ASSERT_TRUE(std::getline(ply, line));
+    std::istringstream fields(line);
+    std::vector<std::string> f;
+    for (std::string x; fields >> x;) f.push_back(x);
+    ASSERT_EQ(f.size(), 4u + 1 + 6) << line;  // corners, facet, group, area, J, H, q, T
+    EXPECT_EQ(f.back(), elements[i + 1].back()) << "element " << i;
+  }
 }
 
 // A 2 m x 1 m plate facing a sky at 250 K: q = eps sigma (T^4 - T_env^4) on every element.

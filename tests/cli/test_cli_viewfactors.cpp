@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -141,6 +142,14 @@ TEST_F(CliViewFactors, StlGroupedBySolid) {
   }
   EXPECT_TRUE(fs::exists(path("s_elements.vtk")));
   EXPECT_NE(r.output.find("wrote " + path("s_elements.vtk")), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("wrote " + path("s_elements.ply")), std::string::npos) << r.output;
+  std::ifstream ply(path("s_elements.ply"));
+  std::vector<std::string> header;
+  for (std::string line; std::getline(ply, line) && line != "end_header";) header.push_back(line);
+  EXPECT_NE(std::find(header.begin(), header.end(), "element face " + std::to_string(elements.size() - 1)),
+            header.end());
+  EXPECT_NE(std::find(header.begin(), header.end(), "property double sky"), header.end());
+  EXPECT_NE(std::find(header.begin(), header.end(), "property double F_floor"), header.end());
   const CliRun bad = run("viewfactors " + path("cube.stl") + " --groups object --levels 1 --elements-to roof --out " +
                          path("b") + " --quiet");
   EXPECT_EQ(bad.status, 1) << bad.output;

@@ -224,6 +224,60 @@ TEST_F(SceneOutput, PlyDeduplicatesVerticesAndCarriesColours) {
   }
 }
 
+TEST_F(SceneOutput, CellsPlyCarriesEveryValueExactly) {
+  // Any per-element values (a thermal solve's, view factors'): one face per triangle with its
+  // facet and each value, read back bit for bit; a name that is not one token is made one.
+  const ElementField f = rgb_cube();
+  std::vector<panelrad::CellValues> cells{
+      {"T_K", [](std::size_t i) { return 300.0 + 1.0 / (3.0 + static_cast<double>(i)); }},
+      {"F to floor", [](std::size_t i) { return std::ldexp(1.0, -static_cast<int>(i)) / 7; }}};
+  const std::string text = panelrad::cells_ply("panelrad test", f.triangle, f.facet, cells);
+  std::istringstream in(text);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  const auto end = std::find(lines.begin(), lines.end(), "end_header");
+  ASSERT_NE(end, lines.end());
+  const std::vector<std::string> header(lines.begin(), end);
+  const std::vector<std::string> expected{"ply",
+                                          "format ascii 1.0",
+                                          "comment panelrad test",
+                                          "element vertex 8",
+                                          "property double x",
+                                          "property double y",
+                                          "property double z",
+                                          "element face 12",
+                                          "property list uchar int vertex_indices",
+                                          "property int facet",
+                                          "property double T_K",
+                                          "property double F_to_floor"};
+  EXPECT_EQ(header, expected);
+  const std::size_t body = static_cast<std::size_t>(end - lines.begin()) + 1;
+  ASSERT_EQ(lines.size(), body + 8 + 12);
+  std::vector<Vec3> vertices;
+  for (std::size_t k = 0; k < 8; ++k) {
+    std::istringstream v(lines[body + k]);
+    Vec3 p;
+    v >> p.x() >> p.y() >> p.z();
+    vertices.push_back(p);
+  }
+  for (std::size_t i = 0; i < 12; ++i) {
+    std::istringstream face(lines[body + 8 + i]);
+    int count, a[3], facet;
+    std::string t, F;
+    face >> count >> a[0] >> a[1] >> a[2] >> facet >> t >> F;
+    ASSERT_FALSE(face.fail()) << lines[body + 8 + i];
+    EXPECT_EQ(count, 3);
+    for (int k = 0; k < 3; ++k) {
+      ASSERT_GE(a[k], 0);
+      ASSERT_LT(a[k], 8);
+      EXPECT_EQ(vertices[static_cast<std::size_t>(a[k])], f.triangle[i][static_cast<std::size_t>(k)]);
+    }
+    EXPECT_EQ(facet, f.facet[i]);
+    EXPECT_EQ(std::strtod(t.c_str(), nullptr), cells[0].value(i));
+    EXPECT_EQ(std::strtod(F.c_str(), nullptr), cells[1].value(i));
+  }
+}
+
 TEST_F(SceneOutput, VtkCounts) {
   const ElementField f = rgb_cube(2);  // 48 elements; 3^3 - 1 = 26 surface vertices
   panelrad::write_radiosity_vtk(path("r.vtk"), f);

@@ -118,6 +118,12 @@ std::string radiosity_csv(const ElementField& field) {
 
 namespace {
 // One line "x y z" per shared vertex, 17 significant digits (round-trip).
+/// "3 a b c": triangle i's corners as indices of the shared vertices (a PLY or VTK polygon).
+void append_corners(std::string& out, const SharedVertices& sv, std::size_t i) {
+  out += "3 " + std::to_string(sv.corner[i][0]) + ' ' + std::to_string(sv.corner[i][1]) + ' ' +
+         std::to_string(sv.corner[i][2]);
+}
+
 void append_points(std::string& out, const std::vector<Vec3>& points) {
   for (const Vec3& p : points) {
     append_g17(out, p.x());
@@ -153,8 +159,7 @@ std::string radiosity_ply(const ElementField& field) {
   out += "end_header\n";
   append_points(out, sv.points);
   for (std::size_t i = 0; i < field.size(); ++i) {
-    out += "3 " + std::to_string(sv.corner[i][0]) + ' ' + std::to_string(sv.corner[i][1]) + ' ' +
-           std::to_string(sv.corner[i][2]);
+    append_corners(out, sv, i);
     for (const unsigned char b : colour[i]) out += ' ' + std::to_string(static_cast<int>(b));
     for (std::size_t c = 0; c < field.channels.size(); ++c) {
       out += ' ';
@@ -170,6 +175,42 @@ void write_radiosity_vtk(const std::string& path, const ElementField& field) {
   write_file_atomically(path, radiosity_vtk(field));
 }
 
+namespace {
+
+/// A name as one token of a VTK or PLY header: a character other than a letter, digit, '_', '-',
+/// '.' becomes '_'.
+std::string header_token(std::string name) {
+  for (char& ch : name)
+    if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '_' && ch != '-' && ch != '.') ch = '_';
+  return name;
+}
+
+}  // namespace
+
+std::string cells_ply(const std::string& title, const std::vector<std::array<Vec3, 3>>& triangle,
+                      const std::vector<geometry::Index>& facet, const std::vector<CellValues>& cells) {
+  const SharedVertices sv = share_vertices(triangle);
+  const std::size_t n = triangle.size();
+  std::string out = "ply\nformat ascii 1.0\ncomment " + title + "\n";
+  out += "element vertex " + std::to_string(sv.points.size()) + "\n";
+  out += "property double x\nproperty double y\nproperty double z\n";
+  out += "element face " + std::to_string(n) + "\n";
+  out += "property list uchar int vertex_indices\nproperty int facet\n";
+  for (const CellValues& cell : cells) out += "property double " + header_token(cell.name) + "\n";
+  out += "end_header\n";
+  append_points(out, sv.points);
+  for (std::size_t i = 0; i < n; ++i) {
+    append_corners(out, sv, i);
+    out += ' ' + std::to_string(facet[i]);
+    for (const CellValues& cell : cells) {
+      out += ' ';
+      append_g17(out, cell.value(i));
+    }
+    out += '\n';
+  }
+  return out;
+}
+
 std::string cells_vtk(const std::string& title, const std::vector<std::array<Vec3, 3>>& triangle,
                       const std::vector<geometry::Index>& facet, const std::vector<CellValues>& cells) {
   const SharedVertices sv = share_vertices(triangle);
@@ -178,17 +219,15 @@ std::string cells_vtk(const std::string& title, const std::vector<std::array<Vec
   out += "POINTS " + std::to_string(sv.points.size()) + " double\n";
   append_points(out, sv.points);
   out += "POLYGONS " + std::to_string(n) + ' ' + std::to_string(4 * n) + '\n';
-  for (std::size_t i = 0; i < n; ++i)
-    out += "3 " + std::to_string(sv.corner[i][0]) + ' ' + std::to_string(sv.corner[i][1]) + ' ' +
-           std::to_string(sv.corner[i][2]) + '\n';
+  for (std::size_t i = 0; i < n; ++i) {
+    append_corners(out, sv, i);
+    out += '\n';
+  }
   out += "CELL_DATA " + std::to_string(n) + '\n';
   out += "SCALARS facet int 1\nLOOKUP_TABLE default\n";
   for (std::size_t i = 0; i < n; ++i) out += std::to_string(facet[i]) + '\n';
   for (const CellValues& cell : cells) {
-    std::string name = cell.name;  // a VTK name is one token
-    for (char& ch : name)
-      if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '_' && ch != '-' && ch != '.') ch = '_';
-    out += "SCALARS " + name + " double 1\nLOOKUP_TABLE default\n";
+    out += "SCALARS " + header_token(cell.name) + " double 1\nLOOKUP_TABLE default\n";
     for (std::size_t i = 0; i < n; ++i) {
       append_g17(out, cell.value(i));
       out += '\n';

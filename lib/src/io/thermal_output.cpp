@@ -1,4 +1,4 @@
-// A thermal solve as CSV and VTK files, written as one set (thermal_output.hpp).
+// A thermal solve as CSV, VTK and PLY files, written as one set (thermal_output.hpp).
 #include "csv_fields.hpp"
 
 #include <panelrad/io/scene_output.hpp>
@@ -13,7 +13,7 @@ using io_detail::csv_field;
 using io_detail::g17;
 
 std::vector<std::string> thermal_paths(const std::string& prefix) {
-  return {prefix + "_groups.csv", prefix + ".csv", prefix + ".vtk"};
+  return {prefix + "_groups.csv", prefix + ".csv", prefix + ".vtk", prefix + ".ply"};
 }
 
 std::string thermal_groups_csv(const ThermalSolution& s) {
@@ -41,18 +41,30 @@ std::string thermal_elements_csv(const ThermalSolution& s) {
   return out.str();
 }
 
-std::string thermal_vtk(const ThermalSolution& s) {
+namespace {
+
+/// The per-element values of PREFIX.vtk and PREFIX.ply.
+std::vector<CellValues> thermal_cells(const ThermalSolution& s) {
   const auto at = [](const Eigen::VectorXd& v) {
     return [&v](std::size_t i) { return v[static_cast<Eigen::Index>(i)]; };
   };
-  const std::vector<CellValues> cells{
+  return {
       {"group", [&s](std::size_t i) { return static_cast<double>(s.group[i]); }},
       {"area_m2", at(s.area)},
       {"J_W_m2", at(s.J)},
       {"H_W_m2", at(s.H)},
       {"q_W_m2", at(s.q)},
       {"T_K", at(s.T)}};
-  return cells_vtk("panelrad thermal solve", s.triangle, s.facet, cells);
+}
+
+}  // namespace
+
+std::string thermal_vtk(const ThermalSolution& s) {
+  return cells_vtk("panelrad thermal solve", s.triangle, s.facet, thermal_cells(s));
+}
+
+std::string thermal_ply(const ThermalSolution& s) {
+  return cells_ply("panelrad thermal solve", s.triangle, s.facet, thermal_cells(s));
 }
 
 std::vector<std::string> write_thermal(const ThermalSolution& s, const std::string& prefix) {
@@ -61,6 +73,7 @@ std::vector<std::string> write_thermal(const ThermalSolution& s, const std::stri
   set.add(paths[0], thermal_groups_csv(s));
   set.add(paths[1], thermal_elements_csv(s));
   set.add(paths[2], thermal_vtk(s));
+  set.add(paths[3], thermal_ply(s));
   set.commit();
   return paths;
 }

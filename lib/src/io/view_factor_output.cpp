@@ -29,6 +29,7 @@ std::vector<std::string> view_factor_paths(const std::string& prefix, bool with_
   if (with_elements) {
     paths.push_back(prefix + "_elements.csv");
     paths.push_back(prefix + "_elements.vtk");
+    paths.push_back(prefix + "_elements.ply");
   }
   return paths;
 }
@@ -50,7 +51,10 @@ std::string element_sky_csv(const ViewFactors& v) {
   return out.str();
 }
 
-std::string element_sky_vtk(const ViewFactors& v) {
+namespace {
+
+/// The per-element values of PREFIX_elements.vtk and .ply.
+std::vector<CellValues> element_cells(const ViewFactors& v) {
   const ElementSky& e = v.elements;
   std::vector<CellValues> cells{{"group", [&e](std::size_t i) { return static_cast<double>(e.group[i]); }},
                                 {"area", [&e](std::size_t i) { return e.area[static_cast<Eigen::Index>(i)]; }},
@@ -59,7 +63,17 @@ std::string element_sky_vtk(const ViewFactors& v) {
     cells.push_back({"F_" + e.target_names[t], [&e, t](std::size_t i) {
                        return e.to(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(t));
                      }});
-  return cells_vtk("panelrad view factors per element", e.triangle, e.facet, cells);
+  return cells;
+}
+
+}  // namespace
+
+std::string element_sky_vtk(const ViewFactors& v) {
+  return cells_vtk("panelrad view factors per element", v.elements.triangle, v.elements.facet, element_cells(v));
+}
+
+std::string element_sky_ply(const ViewFactors& v) {
+  return cells_ply("panelrad view factors per element", v.elements.triangle, v.elements.facet, element_cells(v));
 }
 
 std::string view_factor_csv(const ViewFactors& v, const Eigen::MatrixXd& values, const Eigen::VectorXd& uncovered) {
@@ -108,8 +122,9 @@ std::vector<std::string> write_view_factors(const ViewFactors& v, const std::str
   if (with_error) set.add(paths[1], view_factor_csv(v, v.error, v.uncovered_error));
   set.add(paths[with_error ? 2 : 1], npy_bytes(v.F));
   if (with_elements) {
-    set.add(paths[paths.size() - 2], element_sky_csv(v));
-    set.add(paths.back(), element_sky_vtk(v));
+    set.add(paths[paths.size() - 3], element_sky_csv(v));
+    set.add(paths[paths.size() - 2], element_sky_vtk(v));
+    set.add(paths.back(), element_sky_ply(v));
   }
   set.commit();
   return paths;

@@ -50,6 +50,12 @@ struct CellValues {
 std::string cells_vtk(const std::string& title, const std::vector<std::array<geometry::Vec3, 3>>& triangle,
                       const std::vector<geometry::Index>& facet, const std::vector<CellValues>& cells);
 
+/// ASCII PLY of the same per-element values, for MeshLab and ParaView: the triangles' corners as
+/// vertices (shared bit-exactly), one face per triangle with the int property `facet` and a double
+/// property per entry of `cells` (17 significant digits, named as in cells_vtk).
+std::string cells_ply(const std::string& title, const std::vector<std::array<geometry::Vec3, 3>>& triangle,
+                      const std::vector<geometry::Index>& facet, const std::vector<CellValues>& cells);
+
 struct RenderOptions {
   int width = 960;
   int height = 720;

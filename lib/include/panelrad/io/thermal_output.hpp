@@ -7,7 +7,8 @@
 //                      that Q_W sums to 0 up to the energy balance's defect (empty when the
 //                      scene is enclosed);
 //   PREFIX.csv         per element: element,facet,group,x,y,z,area_m2,J_W_m2,H_W_m2,q_W_m2,T_K;
-//   PREFIX.vtk         the same per element on its triangle (legacy VTK cell data, ParaView).
+//   PREFIX.vtk         the same per element on its triangle (legacy VTK cell data, ParaView);
+//   PREFIX.ply         the same as face properties (ASCII PLY, MeshLab and ParaView).
 #include <panelrad/thermal/thermal_solve.hpp>
 
 #include <string>
@@ -18,10 +19,11 @@ namespace panelrad {
 /// The paths write_thermal writes for `prefix`.
 std::vector<std::string> thermal_paths(const std::string& prefix);
 
-/// The texts of PREFIX_groups.csv, PREFIX.csv and PREFIX.vtk.
+/// The texts of PREFIX_groups.csv, PREFIX.csv, PREFIX.vtk and PREFIX.ply.
 std::string thermal_groups_csv(const ThermalSolution& s);
 std::string thermal_elements_csv(const ThermalSolution& s);
 std::string thermal_vtk(const ThermalSolution& s);
+std::string thermal_ply(const ThermalSolution& s);
 
 /// Writes the set; a failure leaves the previous files in place and throws std::runtime_error
 /// naming the path. Returns the paths written.

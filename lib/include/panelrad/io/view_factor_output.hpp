@@ -11,7 +11,8 @@
 //                     area and sky view factor 1 - (H 1)_i), then F_<J> for each group J of
 //                     ViewFactorOptions::element_targets;
 //   PREFIX_elements.vtk  the same per element on its triangle (legacy VTK, ParaView): facet,
-//                     group (index), area, sky and F_<J> as cell data.
+//                     group (index), area, sky and F_<J> as cell data;
+//   PREFIX_elements.ply  the same as face properties (ASCII PLY, MeshLab and ParaView).
 // Numbers are written with 17 significant digits (each double read back exactly).
 #include <panelrad/viewfactors/view_factors.hpp>
 
@@ -24,9 +25,11 @@ namespace panelrad {
 /// elements' file when `with_elements`).
 std::vector<std::string> view_factor_paths(const std::string& prefix, bool with_error, bool with_elements = false);
 
-/// The CSV text of PREFIX_elements.csv, and the VTK text of PREFIX_elements.vtk.
+/// The CSV text of PREFIX_elements.csv, the VTK text of PREFIX_elements.vtk and the PLY text of
+/// PREFIX_elements.ply.
 std::string element_sky_csv(const ViewFactors& v);
 std::string element_sky_vtk(const ViewFactors& v);
+std::string element_sky_ply(const ViewFactors& v);
 
 /// The CSV text of PREFIX.csv (`values` = v.F and v.uncovered) or PREFIX_error.csv (v.error and
 /// v.uncovered_error).
