@@ -34,7 +34,7 @@ const char* kThermalUsage =
     "  given and rho = 1, E = q where q is given is solved by GMRES (--tol, default 1e-9) on the fast\n"
     "  operator, the line of sight computed unless the scene is proven convex. Writes PREFIX_groups.csv\n"
     "  (group,area_m2,T_K,q_W_m2,Q_W and the environment's row), PREFIX.csv (per element J, H, q, T)\n"
-    "  PREFIX.vtk and PREFIX.ply; PREFIX defaults to the scene's name with '_thermal' in the current directory.\n"
+    "  PREFIX.vtk, PREFIX.ply and PREFIX.png (T); PREFIX defaults to the scene's name with '_thermal' in the current directory.\n"
     "  The summary gives every group's rate and the energy balance (sum of the rates against what the\n"
     "  environment takes) with its defect.\n"
     "  Exit status: 0 written; 1 invalid input or failed run (nothing written); 2 usage error.\n";

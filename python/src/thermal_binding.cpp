@@ -101,7 +101,7 @@ T (K); the environment's net rate received and the energy balance's defect.
             py::gil_scoped_release release;
             return write_thermal(s, p);
           },
-          py::arg("prefix"), "Writes PREFIX_groups.csv, PREFIX.csv, PREFIX.vtk and PREFIX.ply, all or none; returns the paths.")
+          py::arg("prefix"), "Writes PREFIX_groups.csv, PREFIX.csv, PREFIX.vtk, PREFIX.ply and PREFIX.png (T), all or none; returns the paths.")
       .def("__repr__", [](const ThermalSolution& s) {
         return "<panelrad.ThermalSolution: " + std::to_string(s.names.size()) + " groups, level " +
                std::to_string(s.level) + ", n " + std::to_string(s.n) + ", " + s.method + ">";

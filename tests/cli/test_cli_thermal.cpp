@@ -64,6 +64,10 @@ TEST_F(CliThermal, ShippedRoomBalancesAndAdiabaticWallsCarryNoHeat) {
   EXPECT_EQ(elements[0], (std::vector<std::string>{"element", "facet", "group", "x", "y", "z", "area_m2", "J_W_m2",
                                                    "H_W_m2", "q_W_m2", "T_K"}));
   EXPECT_TRUE(fs::exists(path("room.vtk")));
+  std::ifstream png(path("room.png"), std::ios::binary);
+  char magic[8] = {};
+  png.read(magic, 8);
+  EXPECT_EQ(std::string(magic, 8), std::string("\x89PNG\r\n\x1a\n", 8));
   // The PLY carries the same temperatures, face by face, bit for bit.
   std::ifstream ply(path("room.ply"));
   std::string line;

@@ -1,4 +1,4 @@
-// A thermal solve as CSV, VTK and PLY files, written as one set (thermal_output.hpp).
+// A thermal solve as CSV, VTK, PLY and PNG files, written as one set (thermal_output.hpp).
 #include "csv_fields.hpp"
 
 #include <panelrad/io/scene_output.hpp>
@@ -13,7 +13,7 @@ using io_detail::csv_field;
 using io_detail::g17;
 
 std::vector<std::string> thermal_paths(const std::string& prefix) {
-  return {prefix + "_groups.csv", prefix + ".csv", prefix + ".vtk", prefix + ".ply"};
+  return {prefix + "_groups.csv", prefix + ".csv", prefix + ".vtk", prefix + ".ply", prefix + ".png"};
 }
 
 std::string thermal_groups_csv(const ThermalSolution& s) {
@@ -67,6 +67,25 @@ std::string thermal_ply(const ThermalSolution& s) {
   return cells_ply("panelrad thermal solve", s.triangle, s.facet, thermal_cells(s));
 }
 
+std::string thermal_png(const ThermalSolution& s) {
+  // The temperature as a scalar field of one channel, T_K: the picture's colour map runs from its
+  // lowest to its highest value, and the view is chosen from the scene (no light: z up).
+  ElementField f;
+  f.triangle = s.triangle;
+  f.inner_normal = s.inner_normal;
+  f.centroid = s.centroid;
+  f.area.assign(s.area.data(), s.area.data() + s.area.size());
+  f.facet = s.facet;
+  f.channels = {"T_K"};
+  f.rho = {Eigen::VectorXd::Zero(s.area.size())};
+  f.emission = {Eigen::VectorXd::Zero(s.area.size())};
+  f.radiosity = {s.T};
+  RenderOptions view;
+  view.view_from_scene = true;
+  view.up_from_scene = true;
+  return radiosity_png(f, view);
+}
+
 std::vector<std::string> write_thermal(const ThermalSolution& s, const std::string& prefix) {
   const std::vector<std::string> paths = thermal_paths(prefix);
   OutputSet set;
@@ -74,6 +93,7 @@ std::vector<std::string> write_thermal(const ThermalSolution& s, const std::stri
   set.add(paths[1], thermal_elements_csv(s));
   set.add(paths[2], thermal_vtk(s));
   set.add(paths[3], thermal_ply(s));
+  set.add(paths[4], thermal_png(s));
   set.commit();
   return paths;
 }

@@ -142,6 +142,7 @@ ThermalSolution solve_thermal(const Scene& scene, const SurfaceGroups& groups,
     out.facet.push_back(col.facet(i));
     out.group.push_back(g);
     out.triangle.push_back(e.vertex);
+    out.inner_normal.push_back(e.normal);
     out.centroid.push_back(col.collocation_point(i));
     out.area[i] = e.area;
   }

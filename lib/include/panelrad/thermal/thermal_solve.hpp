@@ -66,6 +66,7 @@ struct ThermalSolution {
   /// Per element of the finest level.
   std::vector<geometry::Index> facet, group;
   std::vector<std::array<geometry::Vec3, 3>> triangle;  ///< corners, as ElementField::triangle
+  std::vector<geometry::Vec3> inner_normal;             ///< the front normal n of (1), as ElementField's
   std::vector<geometry::Vec3> centroid;
   Eigen::VectorXd area;
   Eigen::VectorXd J, H, q, T;     ///< W/m^2, W/m^2, W/m^2 (J - H), K
