@@ -282,6 +282,20 @@ struct Occluders::Impl {
     return search.covered;
   }
 
+  /// The first of the hints that alone hides tau (may_meet and covers_shaft), moved to the front of
+  /// them; -1 when none does.
+  Index hinted_cover(const Shaft& s, BlockerHints& hints) const {
+    for (const Index t : hints.face) {
+      if (t < 0 || t >= static_cast<Index>(faces.size())) continue;
+      const FaceData& f = faces[static_cast<std::size_t>(t)];
+      if (may_meet(f, s) && covers_shaft(f, s)) {
+        hints.remember(t);
+        return t;
+      }
+    }
+    return -1;
+  }
+
   /// The shadows of the faces of `among` that meet the shaft, into `meeting` and `shadows`.
   void shadows_of(const Shaft& s, std::span<const Index> among, std::vector<Index>& meeting,
                   std::vector<Shadow>& shadows) const {
@@ -439,15 +453,7 @@ bool Occluders::hidden_by_a_face(const Vec3& P, const Vec3& nP, const std::array
   Shaft s;
   if (!make_shaft(P, nP, tau, nQ, impl_->margin, s) || s.grazing) return false;
   complete_shaft(s);
-  if (hints && !s.straddles)
-    for (const Index t : hints->face) {
-      if (t < 0 || t >= size()) continue;
-      const FaceData& f = impl_->faces[static_cast<std::size_t>(t)];
-      if (may_meet(f, s) && covers_shaft(f, s)) {
-        hints->remember(t);
-        return true;
-      }
-    }
+  if (hints && impl_->hinted_cover(s, *hints) >= 0) return true;
   const Index covering = impl_->collect(s, out, true);
   if (covering < 0) return false;
   if (hints) hints->remember(covering);
@@ -467,22 +473,17 @@ bool Occluders::hidden_by_one_of(const Vec3& P, const Vec3& nP, const std::array
   Shaft s;
   if (!make_shaft(P, nP, tau, nQ, impl_->margin, s) || s.grazing || s.straddles) return false;
   complete_shaft(s);
-  const auto covering = [&](Index t) {
-    if (t < 0 || t >= size()) return false;
+  if (hints && impl_->hinted_cover(s, *hints) >= 0) return true;
+  for (const Index t : among) {
+    if (t < 0 || t >= size())
+      throw std::invalid_argument("Occluders: occluder index " + std::to_string(t) + " is not in [0, " +
+                                  std::to_string(size()) + ")");
     const FaceData& f = impl_->faces[static_cast<std::size_t>(t)];
-    return may_meet(f, s) && covers_shaft(f, s);
-  };
-  if (hints)
-    for (const Index t : hints->face)
-      if (covering(t)) {
-        hints->remember(t);
-        return true;
-      }
-  for (const Index t : among)
-    if (covering(t)) {
+    if (may_meet(f, s) && covers_shaft(f, s)) {
       if (hints) hints->remember(t);
       return true;
     }
+  }
   return false;
 }
 

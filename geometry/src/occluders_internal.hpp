@@ -91,8 +91,9 @@ struct ClusterShaft {
 
 /// False when the face lies farther than two margins from conv(sigma, tau) along its box's axes,
 /// its own normal or a supporting plane of the shaft: it then meets no point shaft conv(P, tau)
-/// of a P of sigma, and may_meet refuses it for each (the point shaft lies in the cluster shaft).
-/// Conservative: a superset of the faces that may_meet accepts for some P of sigma.
+/// of a P of sigma (each lies in the cluster shaft) and casts no shadow for any. Conservative: the
+/// faces it accepts hold every face that meets some P's shaft; they need not hold every face
+/// may_meet accepts (faces near a point's shaft that pass each of its plane tests but miss it).
 bool may_enter(const FaceData& f, const ClusterShaft& s, double margin);
 
 /// True when every segment from sigma to tau crosses the face's interior: its plane separates

@@ -40,7 +40,6 @@ RootSight ClusterSightCache::of(const geometry::ClusterTree& tree, const geometr
     begin_[r] = static_cast<std::uint32_t>(faces_.size());
     if (sight.listed) faces_.insert(faces_.end(), found_.begin(), found_.end());
     end_[r] = static_cast<std::uint32_t>(faces_.size());
-    ++(sight.hidden ? hidden : sight.listed ? listed : unlisted);
   }
   RootSight out;
   out.hidden = state_[r] == 0;

@@ -34,8 +34,6 @@ class ClusterSightCache {
   /// The root as seen from the current cluster, decided at its first request. The span is valid
   /// until the next call.
   RootSight of(const geometry::ClusterTree& tree, const geometry::Occluders& occluders, geometry::Index root);
-  /// Roots decided (hidden, listed, neither) since construction: the cost of the cache.
-  std::size_t hidden = 0, listed = 0, unlisted = 0;
 
  private:
   std::int64_t key_ = -1;
