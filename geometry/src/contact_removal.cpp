@@ -405,13 +405,22 @@ std::optional<Failure> remove_contacts(TriangleMesh& mesh, const std::vector<Ove
 }
 
 void close_gaps(TriangleMesh& mesh, const std::vector<Overlap>& across_gap) {
+  const auto normal = [&](const Tri& t) {
+    return Vec3((mesh.vertices[at(t[1])] - mesh.vertices[at(t[0])]).cross(mesh.vertices[at(t[2])] - mesh.vertices[at(t[0])]));
+  };
   for (const Overlap& o : across_gap) {
-    const Tri &ti = mesh.triangles[at(o.i)], &tj = mesh.triangles[at(o.j)];
+    // The larger triangle's plane is the better determined: its corners' rounding tilts it by
+    // about rounding / its size, and the smaller one's corners lie within about their own
+    // distance of it. (The plane of a small triangle, extended over a large one, would move the
+    // large one's far corners by the rounding times their distance over the small one's size.)
+    Index to = o.i, moved = o.j;
+    if (normal(mesh.triangles[at(o.j)]).norm() > normal(mesh.triangles[at(o.i)]).norm()) std::swap(to, moved);
+    const Tri &ti = mesh.triangles[at(to)], &tj = mesh.triangles[at(moved)];
     int axis = 0;
-    const Vec3 n = (mesh.vertices[at(ti[1])] - mesh.vertices[at(ti[0])]).cross(mesh.vertices[at(ti[2])] - mesh.vertices[at(ti[0])]);
+    const Vec3 n = normal(ti);
     n.cwiseAbs().maxCoeff(&axis);
     if (projected_orientation(mesh, ti, axis) == projected_orientation(mesh, tj, axis)) continue;  // refused later
-    // Onto the plane of ti along its unit normal; exact for a plane normal to an axis.
+    // Onto the plane of ti (the larger) along its unit normal; exact for a plane normal to an axis.
     const Vec3 a = mesh.vertices[at(ti[0])];
     const Vec3 u = n.normalized();
     const bool axis_plane = n.cwiseAbs().maxCoeff() == n.norm();

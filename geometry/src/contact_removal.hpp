@@ -100,9 +100,12 @@ std::vector<Overlap> faces_across_a_gap(const TriangleMesh& mesh, const ContactT
 
 /// Closes the gaps of the pairs of faces_across_a_gap that face each other, and of the overlaps
 /// within the rounding of the numbers as written (check_no_crossing): the corners of the
-/// second triangle are moved onto the plane of the first (by less than the resolution; exactly
+/// smaller triangle are moved onto the plane of the larger (by less than the resolution; exactly
 /// onto it for a plane normal to an axis), so that no slit narrower than the visibility resolves
-/// is left between two solids in contact. Pairs facing the same way are left (refused later).
+/// is left between two solids in contact. The larger's plane is the better determined by its
+/// rounded corners; a small triangle's plane extended over a large one would tilt it (a leg's top
+/// under a table's top, 1e6 from the origin: 1e-8 at the far corners, 1e-8 in u). Pairs facing the
+/// same way are left (refused later).
 void close_gaps(TriangleMesh& mesh, const std::vector<Overlap>& across_gap);
 
 }  // namespace panelrad::geometry::validation_detail

@@ -676,7 +676,6 @@ inline SolveOptions oracle_solver_options(int level) {
   SolveOptions o;
   o.level = level;
   o.op.method = OperatorMethod::dense;
-  o.op.method = OperatorMethod::dense;
   o.solver.tolerance = 1e-13;
   return o;
 }
