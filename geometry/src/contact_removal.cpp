@@ -319,15 +319,6 @@ std::optional<Failure> remove_contacts(TriangleMesh& mesh, const std::vector<Ove
   const Describe d{mesh};
   const Sz nt = mesh.triangles.size();
   std::vector<std::vector<Index>> covers(nt);
-  const auto point_text = [](const Vec3& x) {
-    std::string s = "(";  // appended piece by piece: GCC 12 warns (-Wrestrict) on "(" + std::string
-    s += num(x.x());
-    s += ", ";
-    s += num(x.y());
-    s += ", ";
-    s += num(x.z());
-    return s + ")";
-  };
   for (const Overlap& o : overlaps) {
     const Index i = o.i, j = o.j;
     const Tri &ti = mesh.triangles[at(i)], &tj = mesh.triangles[at(j)];

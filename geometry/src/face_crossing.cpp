@@ -143,12 +143,6 @@ std::optional<Vec3> crossing_point(const TriangleMesh& mesh, const std::vector<P
   return std::nullopt;
 }
 
-std::string point_text(const Vec3& x) {
-  std::string s(1, '(');
-  s.append(num(x.x())).append(", ").append(num(x.y())).append(", ").append(num(x.z())).append(")");
-  return s;
-}
-
 /// The distances of u's corners from the plane of t (double precision, plane_distance).
 std::array<double, 3> corner_distances(const TriangleMesh& mesh, const Tri& t, const Tri& u) {
   const Vec3 &a = mesh.vertices[at(t[0])], &b = mesh.vertices[at(t[1])], &c = mesh.vertices[at(t[2])];
@@ -244,7 +238,7 @@ std::optional<Failure> check_no_crossing(const TriangleMesh& mesh, const std::ve
       overlaps->push_back({i, j, *x});
       continue;
     }
-    std::string beyond;
+    std::string beyond, hint;
     if (!coplanar && tolerance && fi != fj) {
       // Within the rounding of the numbers as written: two faces in one plane (an overlap of
       // faces in contact), or touching (a side standing on a floor, through it by an ulp).
@@ -259,12 +253,22 @@ std::optional<Failure> check_no_crossing(const TriangleMesh& mesh, const std::ve
       if (depth <= tol) continue;
       beyond = ", by " + sci(depth) + ", more than the rounding of their coordinates as written allows (" +
                sci(tol) + ")";
+      double size = 0;
+      std::vector<Vec3> corners;
+      for (const Tri* t : {&ti, &tj})
+        for (int s = 0; s < 3; ++s) {
+          corners.push_back(mesh.vertices[at((*t)[at(s)])]);
+          size = std::max(size, (mesh.vertices[at((*t)[at(s)])] - mesh.vertices[at((*t)[at((s + 1) % 3)])]).norm());
+        }
+      const double printed = std::max({printed_rounding(corners, size), tolerance->rounding[at(fi)], tolerance->rounding[at(fj)]});
+      hint = more_digits_hint(printed, depth, 8, size);
     }
     const std::string faces = fi == fj ? d.face(fi) + " crosses itself" : d.faces(fi, fj) + " cross";
     return Failure{"crossing", faces + " at " + point_text(*x) + beyond + ": " + d.triangle(i) + " and " + d.triangle(j) +
                                    " have interior points in common, so neither lies on one side of the other and "
                                    "their front sides (what emits, reflects and is seen) are not defined there; "
-                                   "split the faces along their intersection, or move one so that they only touch"};
+                                   "split the faces along their intersection, or move one so that they only touch" +
+                                   hint};
   }
   return std::nullopt;
 }

@@ -155,7 +155,9 @@ Flatness not_planar(const std::vector<Vec3>& c, const Plane& pl, double eta) {
                             " of the file's coordinates)";
   if (farthest > kFlatnessLimit * pl.size)
     return {true, "is not planar: " + where + " and more than " + num(kFlatnessLimit) +
-                      " of its size; split it into planar polygons or triangles"};
+                      " of its size; split it into planar polygons or triangles" +
+                      validation_detail::more_digits_hint(validation_detail::printed_rounding(c, pl.size / pl.scale), farthest / pl.scale,
+                                                          kFlatnessRoundings, pl.size / pl.scale)};
   return {false, "is not exactly planar: " + where + "; it is triangulated as projected along its normal, each "
                  "triangle in its own plane"};
 }

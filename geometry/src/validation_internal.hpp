@@ -47,6 +47,8 @@ inline Sz at(Index i) { return static_cast<Sz>(i); }
 std::string num(double x);
 /// x with 3 significant digits in scientific notation.
 std::string sci(double x);
+/// "(x, y, z)", each as num.
+std::string point_text(const Vec3& x);
 /// A positive length relative to the diameter, never printed as 0.
 std::string relative(double dist, double diam);
 
@@ -184,6 +186,19 @@ struct Overlap {
 /// place of its shortest decimal when that has 6 or more significant digits (at least an ulp),
 /// else 0 (a short decimal is meant exactly).
 double written_rounding(double x);
+/// Half a unit in the last place of x's shortest decimal, whatever its digits (0.3: 0.05;
+/// 0.000655: 5e-7): how far x may lie from what it was printed from.
+double printed_place_rounding(double x);
+/// How finely `corners` (of a polygon or a pair of triangles of size `size`) are printed: the
+/// least printed_place_rounding of their nonzero coordinates (a fixed-decimal export drops
+/// trailing zeros, so the finest place shows the printing; coordinates moved since they were read
+/// show a finer one); 0 when all are 0, or when that place is coarser than 1e-2 of `size` (short
+/// numbers meant as written: 0.3, 12.5).
+double printed_rounding(const std::vector<Vec3>& corners, double size);
+/// The hint of a refusal that the printing of the coordinates could explain: when `distance` (a
+/// corner off its polygon's plane, the depth of a crossing) is at most `roundings` times
+/// `rounding` (> 0), a sentence that says so and asks for more digits; else empty.
+std::string more_digits_hint(double rounding, double distance, double roundings, double size);
 /// Per input face, the largest written_rounding of its corners' coordinates; all 0 for a mesh
 /// built in code (no facet_line).
 std::vector<double> facet_rounding(const TriangleMesh& mesh);

@@ -16,6 +16,12 @@ std::string num(double x) {
   return std::string(buf, res.ptr);
 }
 
+std::string point_text(const Vec3& x) {
+  std::string s(1, '(');
+  s.append(num(x.x())).append(", ").append(num(x.y())).append(", ").append(num(x.z())).append(")");
+  return s;
+}
+
 std::string sci(double x) {
   std::ostringstream os;
   os.precision(2);

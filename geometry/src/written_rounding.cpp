@@ -19,6 +19,8 @@
 #include "validation_internal.hpp"
 
 #include <algorithm>
+#include <string>
+#include <vector>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -40,6 +42,13 @@ void shortest_decimal(double x, int& digits, int& exponent) {
 }
 
 }  // namespace
+
+double printed_place_rounding(double x) {
+  if (x == 0 || !std::isfinite(x)) return 0;
+  int digits = 0, exponent = 0;
+  shortest_decimal(x, digits, exponent);
+  return 0.5 * std::pow(10.0, exponent - digits + 1);
+}
 
 double written_rounding(double x) {
   if (x == 0 || !std::isfinite(x)) return 0;
@@ -74,6 +83,24 @@ double rounding_tolerance(const ContactTolerance& tolerance, Index f, Index g, d
 
 double ContactTolerance::of(Index f, Index g, double pair_size) const {
   return std::max(resolution, rounding_tolerance(*this, f, g, pair_size));
+}
+
+double printed_rounding(const std::vector<Vec3>& corners, double size) {
+  double r = std::numeric_limits<double>::infinity();
+  for (const Vec3& x : corners)
+    for (int k = 0; k < 3; ++k)
+      if (x[k] != 0) r = std::min(r, printed_place_rounding(x[k]));
+  // A place coarser than a hundredth of the size is a short number meant as written (0.3, 12.5).
+  return std::isfinite(r) && r <= 1e-2 * size ? r : 0.0;
+}
+
+std::string more_digits_hint(double rounding, double distance, double roundings, double size) {
+  if (!(rounding > 0) || !(distance <= roundings * rounding)) return "";
+  return ". The coordinates are printed to " + num(2 * rounding) + " (a rounding of " + sci(rounding) + ", " +
+         sci(rounding / size) + " of the size " + sci(size) + "), which can account for " + sci(distance) +
+         ", but a rounding of more than 1e-4 of the size is not taken for one (the faces could be meant apart "
+         "or crossing): if they were meant flat or touching, write the coordinates with more digits (17 "
+         "significant digits keep each double exactly)";
 }
 
 double largest_tolerance(const ContactTolerance& tolerance, double size) {

@@ -230,6 +230,25 @@ TEST(PolygonTriangulation, FlatnessToleranceIsTheLargerOfSizeAndRounding) {
   EXPECT_CONTAINS(triangulate_polygon(lifted(1e-2), 5e-6).refusal, "lies 2.50e-03 from the plane");
 }
 
+// A polygon refused as not planar by no more than its coordinates' printing could bend it (a
+// millimetre-sized quad written with 6 decimals: 3 significant digits) is told so, and asked for
+// more digits; one written with short numbers meant as written (a place coarser than 1e-2 of its
+// size), or bent by more than 4 printed places, is not.
+TEST(PolygonTriangulation, RefusalWithinThePrintingAsksForMoreDigits) {
+  const std::vector<Vec3> printed = {{0.000100, 0.000200, 0.000000}, {0.000600, 0.000200, 0.000000},
+                                     {0.000600, 0.000700, 0.000001}, {0.000100, 0.000700, 0.000000}};
+  const std::string why = triangulate_polygon(printed, 0).refusal;
+  EXPECT_CONTAINS(why, "is not planar");
+  EXPECT_CONTAINS(why, "The coordinates are printed to 1e-06 (a rounding of 5.00e-07");
+  EXPECT_CONTAINS(why, "write the coordinates with more digits");
+  const std::vector<Vec3> meant = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0.3}, {0, 1, 0}};
+  EXPECT_CONTAINS(triangulate_polygon(meant, 0).refusal, "is not planar");
+  EXPECT_EQ(triangulate_polygon(meant, 0).refusal.find("more digits"), std::string::npos);
+  const std::vector<Vec3> bent = {{0.000100, 0.000200, 0.000000}, {0.000600, 0.000200, 0.000000},
+                                  {0.000600, 0.000700, 0.000009}, {0.000100, 0.000700, 0.000000}};
+  EXPECT_EQ(triangulate_polygon(bent, 0).refusal.find("more digits"), std::string::npos);
+}
+
 // Coordinates near the ends of the double range (exact binary scalings of an L): the plane is
 // computed on coordinates scaled by a power of two, the rest by exact predicates.
 TEST(PolygonTriangulation, ExtremeCoordinateScales) {

@@ -152,6 +152,68 @@ TEST(ContactWritingsSweep, EveryFamilyRotatedInEveryFrameSolvesToTheConstant) {
   }
 }
 
+// Where the written digits do not resolve the scene (a rounding beyond 1e-4 of a face's size, the
+// most that is taken for rounding): 6 decimals at 1e-3 (3 significant digits) and 9 digits at 1e6
+// (2 decimals). A refusal says that the printing could account for what it refuses and asks for
+// more digits, and that hint applied (the same scene written with 17 digits) solves to 1e-9. An
+// accepted closed scene solves to the oracle's bound. Not yet: at 1e6 with 9 digits some scenes
+// are accepted open, a contact's joint left as a slit of up to the rounding (counted, not
+// asserted: docs/scenes-and-visibility.md).
+TEST(ContactWritingsSweep, WritingsTooShortForTheSceneAreRefusedAndMoreDigitsSolve) {
+  struct Case {
+    testing::Frame frame;
+    int digits;
+  };
+  for (const Case& c : {Case{{"small", 1e-3, Vec3::Zero()}, 6}, Case{{"moved", 1.0, Vec3(1e6, -1e6, 1e6)}, 9}}) {
+    const std::vector<testing::PolygonScene> families = testing::contact_families();
+    std::mt19937_64 rng(11);
+    int refused = 0, solved = 0, open = 0;
+    for (std::size_t f = 0; f < families.size(); ++f)
+      for (int r = 0; r < 5; ++r) {
+        testing::Writing w;
+        w.rotation = testing::random_rotation(rng);
+        w.first_corner = -1;
+        w.separate = (r % 2) == 1;
+        w.digits = c.digits;
+        w.seed = rng();
+        w.frame = c.frame;
+        SCOPED_TRACE(families[f].name + ", " + w.describe());
+        geometry::TriangleMesh mesh;
+        std::string refusal;
+        try {
+          mesh = testing::read_scene(families[f], w);
+        } catch (const std::exception& e) {  // a polygon refused by the reader
+          refusal = e.what();
+        }
+        if (refusal.empty()) {
+          const testing::OracleRun run = testing::run_constant_oracle(mesh, 1.0, 0);
+          if (run.valid) {
+            ASSERT_TRUE(run.solved) << run.describe();
+            if (!run.closed) {
+              ++open;
+              continue;
+            }
+            EXPECT_LE(run.error, run.tolerance) << run.describe();
+            ++solved;
+            continue;
+          }
+          refusal = run.message;
+        }
+        ++refused;
+        EXPECT_NE(refusal.find("write the coordinates with more digits"), std::string::npos) << refusal;
+        testing::Writing more = w;
+        more.digits = 17;
+        const testing::OracleRun run = testing::run_constant_oracle(testing::read_scene(families[f], more), 1.0, 0);
+        ASSERT_TRUE(run.valid) << run.describe();
+        ASSERT_TRUE(run.solved) << run.describe();
+        EXPECT_LE(run.error, 1e-9) << run.describe();
+      }
+    std::printf("%s, %d digits: %d closed and solved to the oracle's bound, %d refused asking for more digits (each "
+                "solved with 17 to 1e-9), %d accepted open\n",
+                c.frame.describe().c_str(), c.digits, solved, refused, open);
+  }
+}
+
 /// The dense level-0 solution of `mesh` lit by some of its input faces (E = 1 on every fourth,
 /// rho as the oracle's), with each element's collocation point taken back to the room's frame by
 /// `back`.
