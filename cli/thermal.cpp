@@ -29,7 +29,8 @@ const char* kThermalUsage =
     "  SCENE: an OFF, OBJ or STL mesh in metres (any set of planar polygons that do not cross, as `solve`\n"
     "  takes). Gray diffuse radiative exchange: FILE (JSON) gives every group either a temperature \"T\"\n"
     "  (K) and an \"emissivity\", or a net flux \"q\" leaving (W/m^2; 0: an adiabatic, re-radiating wall),\n"
-    "  and the environment {\"T\": K} of an open scene (or \"none\"): see docs/thermal.md. Groups as in\n"
+    "  and the environment {\"T\": K} of an open scene (or \"none\"); a band model gives \"band_edges_um\"\n"
+    "  and an emissivity per band: see docs/thermal.md. Groups as in\n"
     "  `viewfactors` (--groups, default object). The radiosity equation with rho = 1 - eps where T is\n"
     "  given and rho = 1, E = q where q is given is solved by GMRES (--tol, default 1e-9) on the fast\n"
     "  operator, the line of sight computed unless the scene is proven convex. Writes PREFIX_groups.csv\n"
@@ -67,6 +68,12 @@ void print_summary(const ThermalSolution& s, const std::string& scene_path) {
   std::printf(", %.2f s\n", s.seconds);
   std::printf("iteration: %s, %d products, residual %.2e\n", s.iteration.converged() ? "converged" : "NOT converged",
               s.iteration.iterations, s.iteration.residual);
+  if (!s.band_edges_um.empty()) {
+    std::printf("bands: %d (edges", static_cast<int>(s.band_edges_um.size() + 1));
+    for (double e : s.band_edges_um) std::printf(" %g", e);
+    std::printf(" um); %d rounds of the split with the temperatures (last change %.1e), %d block products in all\n",
+                s.band_rounds, s.band_change, s.band_products);
+  }
   std::printf("%-24s %12s %10s %14s %14s\n", "group", "area m^2", "T K", "q W/m^2", "Q W");
   for (std::size_t g = 0; g < s.names.size(); ++g) {
     const auto k = static_cast<Eigen::Index>(g);
@@ -107,6 +114,7 @@ int run_thermal(const CLI::App& app, ThermalCommandLine& line) {
   }
   const ThermalConditions bc = read_thermal_conditions(line.bc_path, groups);
   o.environment_temperature = bc.environment_temperature;
+  o.band_edges_um = bc.band_edges_um;
   if (const std::string why = thermal_problem(scene, groups, bc.conditions, o); !why.empty())
     throw std::runtime_error(line.bc_path + ": " + why);
   for (const std::string& path : thermal_paths(line.prefix)) check_output_path(path);

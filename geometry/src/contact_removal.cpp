@@ -148,6 +148,38 @@ std::vector<Index> polygon_corners(const TriangleMesh& mesh, Index f) {
 /// polygon written twice on separate vertices has the same corners too), triangulated either way.
 bool same_polygon(const TriangleMesh& mesh, Index f, Index g) { return polygon_corners(mesh, f) == polygon_corners(mesh, g); }
 
+}  // namespace
+
+std::vector<Overlap> copies_of_one_polygon(const TriangleMesh& mesh, double tol) {
+  const Sz nf = at(mesh.num_facets);
+  std::vector<std::vector<Index>> corners(nf), triangles(nf);
+  for (Sz t = 0; t < mesh.triangles.size(); ++t) {
+    const Sz f = at(mesh.facet_of_triangle[t]);
+    corners[f].insert(corners[f].end(), mesh.triangles[t].begin(), mesh.triangles[t].end());
+    triangles[f].push_back(static_cast<Index>(t));
+  }
+  std::map<std::vector<Index>, std::vector<Index>> faces_on;
+  for (Sz f = 0; f < nf; ++f) {
+    std::sort(corners[f].begin(), corners[f].end());
+    corners[f].erase(std::unique(corners[f].begin(), corners[f].end()), corners[f].end());
+    if (!corners[f].empty()) faces_on[corners[f]].push_back(static_cast<Index>(f));
+  }
+  std::vector<Overlap> out;
+  for (const auto& [c, faces] : faces_on)
+    for (Sz a = 0; a < faces.size(); ++a)
+      for (Sz b = a + 1; b < faces.size(); ++b)
+        for (Index ti : triangles[at(faces[a])])
+          for (Index tj : triangles[at(faces[b])]) {
+            const Tri &x = mesh.triangles[at(ti)], &y = mesh.triangles[at(tj)];
+            if (!projections_overlap(mesh, x, y, tol)) continue;
+            const Vec3 centre = (mesh.vertices[at(x[0])] + mesh.vertices[at(x[1])] + mesh.vertices[at(x[2])]) / 3.0;
+            out.push_back({std::min(ti, tj), std::max(ti, tj), centre, false, true});
+          }
+  return out;
+}
+
+namespace {
+
 /// A mesh whose triangles were cut by cut_covered.
 struct CutMesh {
   TriangleMesh mesh;

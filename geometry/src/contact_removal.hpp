@@ -98,6 +98,13 @@ double longest_edge(const TriangleMesh& mesh, const Tri& t);
 /// same surface twice (facing the same way). Exact side tests; distances in double precision.
 std::vector<Overlap> faces_across_a_gap(const TriangleMesh& mesh, const ContactTolerance& tolerance);
 
+/// Pairs of overlapping triangles (in projection, by more than `tol`) of input faces with the same
+/// corners: one polygon given twice (solids that share a face's vertices, a polygon written twice).
+/// Each is the same surface twice however the rounding of its corners bends it, so it is listed
+/// as an overlap within the rounding (a contact, a two-sided sheet or a duplicate, as
+/// remove_contacts decides) even where the bend exceeds the contact tolerance.
+std::vector<Overlap> copies_of_one_polygon(const TriangleMesh& mesh, double tol);
+
 /// Closes the gaps of the pairs of faces_across_a_gap that face each other, and of the overlaps
 /// within the rounding of the numbers as written (check_no_crossing): the corners of the
 /// smaller triangle are moved onto the plane of the larger (by less than the resolution; exactly

@@ -164,6 +164,13 @@ SceneValidationReport validate_scene(TriangleMesh& mesh) {
     mesh = input;
     return rejected(std::move(report), *f);
   }
+  {
+    // One polygon given twice is one surface twice, whatever the rounding of its corners.
+    std::set<std::pair<Index, Index>> known;
+    for (const Overlap& o : overlaps) known.emplace(o.i, o.j);
+    for (const Overlap& o : copies_of_one_polygon(mesh, resolution))
+      if (known.emplace(o.i, o.j).second) overlaps.push_back(o);
+  }
   ScenePieces pieces;
   ContactReport contacts;
   {

@@ -55,7 +55,22 @@ std::vector<SurfaceCondition> read_conditions(const py::dict& conditions, const 
     c.value = number_at(entry, hot ? "T" : "q", name);
     if (hot && !entry.contains("emissivity"))
       throw std::invalid_argument("conditions['" + name + "']: a temperature needs an 'emissivity' in (0, 1]");
-    c.emissivity = entry.contains("emissivity") ? number_at(entry, "emissivity", name) : 1.0;
+    if (entry.contains("emissivity") && !py::isinstance<py::float_>(entry["emissivity"]) &&
+        !py::isinstance<py::int_>(entry["emissivity"]) && py::isinstance<py::sequence>(entry["emissivity"])) {
+      // One per wavelength band (band_edges_um): a list, a tuple or a 1-D array of numbers.
+      for (const py::handle v : entry["emissivity"].cast<py::sequence>()) {
+        double x = 0;
+        try {
+          if (py::isinstance<py::bool_>(v)) throw py::cast_error();
+          x = v.cast<double>();
+        } catch (const py::cast_error&) {
+          throw py::type_error("conditions['" + name + "']['emissivity']: expected a number or one number per band");
+        }
+        c.band_emissivity.push_back(x);
+      }
+    } else {
+      c.emissivity = entry.contains("emissivity") ? number_at(entry, "emissivity", name) : 1.0;
+    }
     out.push_back(c);
   }
   return out;
@@ -94,6 +109,12 @@ T (K); the environment's net rate received and the energy balance's defect.
       .def_property_readonly("method", [](const ThermalSolution& s) { return s.method; })
       .def_property_readonly("seconds", [](const ThermalSolution& s) { return s.seconds; })
       .def_property_readonly("warnings", [](const ThermalSolution& s) { return s.warnings; })
+      .def_property_readonly("band_edges_um", [](const ThermalSolution& s) { return s.band_edges_um; },
+                             "The band edges of a band model, micrometres (empty: gray).")
+      .def_property_readonly("band_rounds", [](const ThermalSolution& s) { return s.band_rounds; },
+                             "Rounds of the bands' split with the temperatures (0: gray, or no flux given).")
+      .def_property_readonly("band_products", [](const ThermalSolution& s) { return s.band_products; },
+                             "Block products of H over all rounds (0: gray).")
       .def(
           "write",
           [](const ThermalSolution& s, py::handle prefix) {
@@ -110,7 +131,7 @@ T (K); the environment's net rate received and the energy balance's defect.
   m.def(
       "thermal_solve",
       [](std::shared_ptr<Scene> scene, py::dict conditions, py::object groups, std::optional<double> environment,
-         double tolerance, std::optional<int> level, long max_elements, double accuracy, std::string method,
+         std::optional<std::vector<double>> band_edges_um, double tolerance, std::optional<int> level, long max_elements, double accuracy, std::string method,
          std::optional<double> eta, std::optional<int> degree, std::optional<std::string> near, std::optional<int> mu,
          std::string visibility, std::optional<int> threads, py::object progress) {
         if (!scene) throw py::type_error("scene: expected a panelrad.Scene, got None");
@@ -119,6 +140,7 @@ T (K); the environment's net rate received and the energy balance's defect.
                                                       std::move(near), mu, std::move(visibility), "auto", std::nullopt,
                                                       1000, threads, std::move(progress)));
         o.environment_temperature = environment;
+        o.band_edges_um = band_edges_um.value_or(std::vector<double>{});
         o.tolerance = tolerance;
         const SurfaceGroups g = surface_groups(*scene, groups);
         const std::vector<SurfaceCondition> c = read_conditions(conditions, g);
@@ -126,7 +148,7 @@ T (K); the environment's net rate received and the energy balance's defect.
         return std::make_shared<ThermalSolution>(solve_thermal(*scene, g, c, o));
       },
       py::arg("scene"), py::arg("conditions"), py::arg("groups") = "object", py::kw_only(),
-      py::arg("environment") = py::none(), py::arg("tolerance") = 1e-9, py::arg("level") = py::none(),
+      py::arg("environment") = py::none(), py::arg("band_edges_um") = py::none(), py::arg("tolerance") = 1e-9, py::arg("level") = py::none(),
       py::arg("max_elements") = 20000, py::arg("accuracy") = 0.05, py::arg("method") = "auto",
       py::arg("eta") = py::none(), py::arg("degree") = py::none(), py::arg("near") = py::none(),
       py::arg("mu") = py::none(), py::arg("visibility") = "auto", py::arg("threads") = py::none(),
@@ -134,7 +156,9 @@ T (K); the environment's net rate received and the energy balance's defect.
 Temperatures and net radiative heat fluxes of gray diffuse surfaces, SI units (docs/thermal.md):
 conditions maps every group (groups as in view_factors, default 'object') to {'T': kelvin,
 'emissivity': e} or {'q': W/m^2 leaving, 'emissivity': e} (q = 0: adiabatic); environment: the
-temperature in K of an open scene's (black) environment. Solved by GMRES on the radiosity equation
+temperature in K of an open scene's (black) environment. A band (non-gray) model: band_edges_um, the
+wavelengths between the bands in micrometres ([3, 8]: [0, 3], [3, 8], [8, inf)), and an
+emissivity per band where a group's differs (a list; a number is the same in every band). Solved by GMRES on the radiosity equation
 with rho = 1 - eps where T is given and rho = 1, E = q where q is given. Raises ArgumentError for a
 missing or unknown group, a value out of range, an open scene without an environment or a closed
 one where no temperature is given. Returns a ThermalSolution.

@@ -36,6 +36,34 @@ def test_adiabatic_plate_takes_the_sky_temperature():
     np.testing.assert_allclose(s.q, 0, atol=1e-9)
 
 
+def band_fraction(lo_um, hi_um, T):
+    """The share of sigma T^4 a blackbody at T emits between lo_um and hi_um: Planck's law
+    integrated by scipy (independent of panelrad's series)."""
+    from scipy.integrate import quad
+    c2 = 1.438776877e-2
+    x = lambda lam_um: c2 / (lam_um * 1e-6 * T)
+    f = lambda t: t**3 / math.expm1(t)
+    lo = x(hi_um) if math.isfinite(hi_um) else 0.0
+    hi = x(lo_um) if lo_um > 0 else 700.0
+    return 15 / math.pi**4 * quad(f, lo, hi, epsabs=1e-14, epsrel=1e-13, limit=200)[0]
+
+
+def test_plate_under_the_sky_with_bands():
+    """Band emissivities (0.9, 0.2, 0.6) in [0, 3], [3, 8], [8, inf) um: q = sum_k eps_k sigma
+    (F_k(T) T^4 - F_k(T_env) T_env^4)."""
+    eps = [0.9, 0.2, 0.6]
+    bands = [(0, 3), (3, 8), (8, math.inf)]
+    s = panelrad.thermal_solve(plate(), {"facet 0": {"T": 900, "emissivity": np.array(eps)}}, "facet",
+                               environment=250, band_edges_um=[3, 8], level=1)
+    q = sum(e * SIGMA * (band_fraction(a, b, 900) * 900**4 - band_fraction(a, b, 250) * 250**4)
+            for e, (a, b) in zip(eps, bands))
+    np.testing.assert_allclose(s.q, q, rtol=1e-10)
+    assert s.band_edges_um == [3, 8]
+    with pytest.raises(panelrad.ArgumentError, match="2 band emissivities for 3 bands"):
+        panelrad.thermal_solve(plate(), {"facet 0": {"T": 900, "emissivity": [0.5, 0.5]}}, "facet",
+                               environment=250, band_edges_um=[3, 8])
+
+
 def test_example_script_balances(source_dir):
     done = subprocess.run([sys.executable, str(source_dir / "examples" / "python" / "thermal_room.py"), "--level", "2"],
                           capture_output=True, text=True, env=dict(os.environ), cwd=source_dir, timeout=300)

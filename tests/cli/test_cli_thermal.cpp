@@ -4,6 +4,8 @@
 // the line and the group (exit 1, nothing written; usage errors exit 2).
 #include "cli_run.hpp"
 
+#include <panelrad/thermal/blackbody.hpp>
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -106,6 +108,24 @@ TEST_F(CliThermal, PlateUnderTheSky) {
   EXPECT_NEAR(std::stod(groups[2][4]), -2 * q, 1e-12 * q);  // the environment receives it
 }
 
+// The same plate with an emissivity per band under a sky at 250 K: q = sum_k eps_k sigma (F_k(T)
+// T^4 - F_k(T_env) T_env^4), the blackbody's band fractions F_k, on every element.
+TEST_F(CliThermal, PlateUnderTheSkyWithBands) {
+  write("plate.obj", "o plate\nv 0 0 0\nv 2 0 0\nv 2 1 0\nv 0 1 0\nf 1 2 3 4\n");
+  write("sky.json", R"({"band_edges_um": [3, 8], "groups": {"plate": {"T": 900, "emissivity": [0.9, 0.2, 0.6]}},
+                        "environment": {"T": 250}})");
+  const CliRun r = run("thermal " + path("plate.obj") + " --bc " + path("sky.json") + " --levels 1 --out " +
+                       path("p") + " --quiet");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_CONTAINS(r.output, "bands: 3 (edges 3 8 um)");
+  const std::vector<double> eps = {0.9, 0.2, 0.6};
+  const double q = panelrad::band_emission({3, 8}, eps, 900) - panelrad::band_emission({3, 8}, eps, 250);
+  const auto groups = read_csv(path("p_groups.csv"));
+  ASSERT_EQ(groups.size(), 3u);
+  EXPECT_NEAR(std::stod(groups[1][3]), q, 1e-12 * q);
+  EXPECT_NEAR(std::stod(groups[2][4]), -2 * q, 1e-12 * q);
+}
+
 TEST_F(CliThermal, RefusalsNameTheFileTheLineAndTheGroup) {
   write("plate.obj", "o plate\nv 0 0 0\nv 2 0 0\nv 2 1 0\nv 0 1 0\nf 1 2 3 4\n");
   const auto refused = [&](const std::string& json, const std::string& message) {
@@ -122,7 +142,14 @@ TEST_F(CliThermal, RefusalsNameTheFileTheLineAndTheGroup) {
   refused(R"({"groups": {"plate": {"T": 300}}, "environment": {"T": 280}})", "a temperature needs an \"emissivity\"");
   refused(R"({"groups": {"plate": {"T": 300, "q": 1, "emissivity": 1}}})", "exactly one of \"T\"");
   refused(R"({"groups": {"plate": {"T": -3, "emissivity": 1}}, "environment": {"T": 280}})", "finite and > 0");
-  refused(R"({"groups": {"plate": {"T": 300, "emissivity": [0.5, 0.6]}}})", "one value per wavelength band");
+  refused(R"({"groups": {"plate": {"T": 300, "emissivity": [0.5, 0.6]}}, "environment": {"T": 280}})",
+          "\"emissivity\" is an array (one per wavelength band), but the file gives no \"band_edges_um\"");
+  refused(R"({"band_edges_um": [3, 8], "groups": {"plate": {"T": 300, "emissivity": [0.5, 0.6]}}, "environment": {"T": 280}})",
+          "\"emissivity\" has 2 values for 3 bands");
+  refused(R"({"band_edges_um": [8, 3], "groups": {"plate": {"T": 300, "emissivity": 1}}, "environment": {"T": 280}})",
+          "edge 2 is 3: the edges must be finite, > 0 and increasing");
+  refused(R"({"band_edges_um": [3], "groups": {"plate": {"T": 300, "emissivity": [0, 0]}}, "environment": {"T": 280}})",
+          "every band emissivity is 0");
   refused(R"({"groups": {"plate": {"T": 300, "emissivity": 1.5}}, "environment": {"T": 280}})", "in (0, 1]");
   refused(R"({"groups": {"plate": {"T": 300, "emissivity": 1}}})", "the scene is open");
   refused(R"({"groups": {"plate": {"T": 300, "emissivity": 1}}, "sky": 3})", "unknown key 'sky'");

@@ -156,9 +156,9 @@ TEST(ContactWritingsSweep, EveryFamilyRotatedInEveryFrameSolvesToTheConstant) {
 // most that is taken for rounding): 6 decimals at 1e-3 (3 significant digits) and 9 digits at 1e6
 // (2 decimals). A refusal says that the printing could account for what it refuses and asks for
 // more digits, and that hint applied (the same scene written with 17 digits) solves to 1e-9. An
-// accepted closed scene solves to the oracle's bound. Not yet: at 1e6 with 9 digits some scenes
-// are accepted open, a contact's joint left as a slit of up to the rounding (counted, not
-// asserted: docs/scenes-and-visibility.md).
+// accepted closed scene solves to the oracle's bound. Not yet: at 1e6 with 9 digits 2 scenes (the
+// box on one floor tile) are accepted open, the tiles' corners a rounding off the walls' edges
+// (counted, not asserted: docs/scenes-and-visibility.md).
 TEST(ContactWritingsSweep, WritingsTooShortForTheSceneAreRefusedAndMoreDigitsSolve) {
   struct Case {
     testing::Frame frame;
@@ -211,6 +211,7 @@ TEST(ContactWritingsSweep, WritingsTooShortForTheSceneAreRefusedAndMoreDigitsSol
     std::printf("%s, %d digits: %d closed and solved to the oracle's bound, %d refused asking for more digits (each "
                 "solved with 17 to 1e-9), %d accepted open\n",
                 c.frame.describe().c_str(), c.digits, solved, refused, open);
+    EXPECT_LE(open, c.digits == 9 ? 2 : 0);  // the known open ones, no more
   }
 }
 

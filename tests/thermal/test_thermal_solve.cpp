@@ -27,8 +27,8 @@ using geometry::Index;
 using geometry::Vec3;
 using Given = SurfaceCondition::Given;
 
-SurfaceCondition at(double T, double eps) { return {Given::temperature, T, eps}; }
-SurfaceCondition flux(double q, double eps) { return {Given::heat_flux, q, eps}; }
+SurfaceCondition at(double T, double eps) { return {Given::temperature, T, eps, {}}; }
+SurfaceCondition flux(double q, double eps) { return {Given::heat_flux, q, eps, {}}; }
 
 ThermalOptions options(int level, OperatorMethod method = OperatorMethod::dense) {
   ThermalOptions o;

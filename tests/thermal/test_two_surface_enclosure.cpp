@@ -91,8 +91,8 @@ TEST(TwoSurfaceEnclosure, NestedPolyhedraApproachTheTextbookFormula) {
     o.solve.level = 0;
     o.solve.op.method = OperatorMethod::dense;
     o.tolerance = 1e-12;
-    const ThermalSolution s = solve_thermal(scene, g, {SurfaceCondition{Given::temperature, T1, eps1},
-                                                       SurfaceCondition{Given::temperature, T2, eps2}},
+    const ThermalSolution s = solve_thermal(scene, g, {SurfaceCondition{Given::temperature, T1, eps1, {}},
+                                                       SurfaceCondition{Given::temperature, T2, eps2, {}}},
                                             o);
     ASSERT_TRUE(s.iteration.converged());
     const double A1 = s.group_area[0], A2 = s.group_area[1];

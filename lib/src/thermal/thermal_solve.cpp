@@ -2,6 +2,8 @@
 // temperatures or net fluxes, solved by GMRES on the solver's operator H.
 #include <panelrad/thermal/thermal_solve.hpp>
 
+#include "band_solve.hpp"
+
 #include <panelrad/operator/auto_parameters.hpp>
 #include <panelrad/solve/solvers.hpp>
 #include <panelrad/support/resources.hpp>
@@ -35,7 +37,14 @@ Scene setup_scene(const Scene& scene, const SurfaceGroups& groups, const std::ve
   std::vector<double> rho(static_cast<std::size_t>(scene.num_facets()));
   for (std::size_t f = 0; f < rho.size(); ++f) {
     const SurfaceCondition& c = conditions[static_cast<std::size_t>(groups.of_facet[f])];
-    rho[f] = c.given == SurfaceCondition::Given::temperature ? 1 - c.emissivity : kReradiatingSetupReflectivity;
+    if (c.given != SurfaceCondition::Given::temperature) {
+      rho[f] = kReradiatingSetupReflectivity;
+    } else if (c.band_emissivity.empty()) {
+      rho[f] = 1 - c.emissivity;
+    } else {  // the band that reflects most, as a flux row where it reflects all
+      rho[f] = std::min(1 - *std::min_element(c.band_emissivity.begin(), c.band_emissivity.end()),
+                        kReradiatingSetupReflectivity);
+    }
   }
   for (std::size_t ch = 0; ch < setup.num_channels(); ++ch) {
     setup.set_reflectivity(rho, ch);
@@ -73,6 +82,31 @@ void sum_groups(const std::vector<SurfaceCondition>& conditions, const Eigen::Ve
   out.balance_defect = flowing > 0 ? std::abs(out.group_Q.sum() - out.environment_Q) / flowing : 0;
 }
 
+/// The band model (band_solve.hpp): J, H, q and T summed over the bands, the groups' sums.
+void solve_with_bands(const RadiositySolver& solver, const std::vector<SurfaceCondition>& conditions,
+                      const ThermalOptions& options, const Eigen::VectorXd& sky, double u_env, ThermalSolution& out) {
+  thermal_detail::BandProblem problem;
+  problem.solver = &solver;
+  problem.conditions = &conditions;
+  problem.group = &out.group;
+  problem.area = out.area;
+  problem.sky = sky;
+  problem.environment_temperature = u_env > 0 ? *options.environment_temperature : 0.0;
+  thermal_detail::BandAnswer bands = thermal_detail::solve_bands(problem, options);
+  out.band_edges_um = options.band_edges_um;
+  out.iteration = bands.iteration;
+  out.band_rounds = bands.rounds;
+  out.band_change = bands.change;
+  out.band_products = bands.products;
+  if (!bands.iteration.converged()) out.warnings.push_back("the iteration did not converge: " + bands.iteration.message);
+  for (std::string& w : bands.warnings) out.warnings.push_back(std::move(w));
+  out.J = std::move(bands.J);
+  out.H = std::move(bands.H);
+  out.q = out.J - out.H;
+  out.T = std::move(bands.T);
+  sum_groups(conditions, sky, u_env, out);
+}
+
 }  // namespace
 
 std::string thermal_problem(const Scene& scene, const SurfaceGroups& groups,
@@ -81,10 +115,35 @@ std::string thermal_problem(const Scene& scene, const SurfaceGroups& groups,
   if (conditions.size() != groups.names.size())
     return "thermal: " + std::to_string(conditions.size()) + " conditions for " + std::to_string(groups.names.size()) +
            " groups";
+  const std::vector<double>& edges = options.band_edges_um;
+  for (std::size_t k = 0; k < edges.size(); ++k)
+    if (!(std::isfinite(edges[k]) && edges[k] > 0 && (k == 0 || edges[k] > edges[k - 1])))
+      return "thermal: the band edges must be finite, > 0 and increasing (micrometres); edge " + std::to_string(k + 1) +
+             " is " + number(edges[k]);
   bool absorbing = false;
   for (std::size_t g = 0; g < conditions.size(); ++g) {
     const SurfaceCondition& c = conditions[g];
     const std::string who = "thermal: group '" + groups.names[g] + "': ";
+    if (!c.band_emissivity.empty()) {
+      if (edges.empty()) return who + "an emissivity per band, but no band edges are given";
+      if (c.band_emissivity.size() != edges.size() + 1)
+        return who + std::to_string(c.band_emissivity.size()) + " band emissivities for " +
+               std::to_string(edges.size() + 1) + " bands (" + std::to_string(edges.size()) + " edges)";
+      bool some = false;
+      for (std::size_t k = 0; k < c.band_emissivity.size(); ++k) {
+        const double e = c.band_emissivity[k];
+        if (!(e >= 0 && e <= 1)) return who + "the emissivity of band " + std::to_string(k + 1) + ", " + number(e) + ", is not in [0, 1]";
+        some = some || e > 0;
+      }
+      if (!some) return who + "every band emissivity is 0: the surface neither emits nor absorbs, so its temperature is not defined";
+      if (c.given == SurfaceCondition::Given::temperature) {
+        if (!(std::isfinite(c.value) && c.value > 0)) return who + "temperature " + number(c.value) + " K is not finite and > 0";
+        absorbing = true;
+      } else if (!std::isfinite(c.value)) {
+        return who + "heat flux " + number(c.value) + " W/m^2 is not finite";
+      }
+      continue;
+    }
     if (!(c.emissivity > 0 && c.emissivity <= 1)) return who + "emissivity " + number(c.emissivity) + " is not in (0, 1]";
     if (c.given == SurfaceCondition::Given::temperature) {
       if (!(std::isfinite(c.value) && c.value > 0)) return who + "temperature " + number(c.value) + " K is not finite and > 0";
@@ -145,6 +204,11 @@ ThermalSolution solve_thermal(const Scene& scene, const SurfaceGroups& groups,
     out.inner_normal.push_back(e.normal);
     out.centroid.push_back(col.collocation_point(i));
     out.area[i] = e.area;
+  }
+  if (!options.band_edges_um.empty()) {
+    solve_with_bands(solver, conditions, options, sky, u_env, out);
+    out.seconds = clock.seconds();
+    return out;
   }
   // (I - diag(rho) H) J = E + rho u_env s by GMRES (rho = 1 on the re-radiating rows).
   SolverOptions gmres;
