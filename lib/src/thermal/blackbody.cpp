@@ -74,9 +74,15 @@ std::vector<double> band_fractions(const std::vector<double>& edges_um, double T
 }
 
 double band_emission(const std::vector<double>& edges_um, const std::vector<double>& eps, double T) {
-  const std::vector<double> f = band_fractions(edges_um, T);
-  double sum = 0;
-  for (std::size_t k = 0; k < f.size(); ++k) sum += eps[k] * f[k];
+  // band_fractions summed with the weights, without a vector: called in the temperatures' Newton
+  // steps, several times per element and round.
+  double sum = 0, below = 0;
+  for (std::size_t k = 0; k < edges_um.size(); ++k) {
+    const double F = blackbody_fraction(edges_um[k] * 1e-6 * T);
+    sum += eps[k] * (F - below);
+    below = F;
+  }
+  sum += eps[edges_um.size()] * (1 - below);
   return sum * kStefanBoltzmann * T * T * T * T;
 }
 
