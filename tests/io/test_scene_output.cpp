@@ -34,6 +34,18 @@ using Rgb = std::array<unsigned char, 3>;
 
 namespace {
 
+/// The `count` vertex lines of an ASCII PLY's body, from lines[first].
+std::vector<Vec3> ply_vertices(const std::vector<std::string>& lines, std::size_t first, std::size_t count) {
+  std::vector<Vec3> vertices;
+  for (std::size_t k = 0; k < count; ++k) {
+    std::istringstream in(lines[first + k]);
+    Vec3 p;
+    in >> p.x() >> p.y() >> p.z();
+    vertices.push_back(p);
+  }
+  return vertices;
+}
+
 /// The unit cube, each face split into m x m squares of two triangles, counter-clockwise seen
 /// from outside. Facets: 0 x=0, 1 x=1, 2 y=0, 3 y=1, 4 z=0, 5 z=1. Channel values are given per
 /// facet: value(facet, channel) for radiosity, emit(facet, channel) for emission.
@@ -199,13 +211,7 @@ TEST_F(SceneOutput, PlyDeduplicatesVerticesAndCarriesColours) {
   EXPECT_TRUE(has("property float u_B"));
   const std::size_t body = static_cast<std::size_t>(end - lines.begin()) + 1;
   ASSERT_EQ(lines.size(), body + 8 + 12);
-  std::vector<Vec3> vertices;
-  for (std::size_t k = 0; k < 8; ++k) {
-    std::istringstream in(lines[body + k]);
-    Vec3 p;
-    in >> p.x() >> p.y() >> p.z();
-    vertices.push_back(p);
-  }
+  const std::vector<Vec3> vertices = ply_vertices(lines, body, 8);
   const auto colours = panelrad::element_colours(f);
   for (std::size_t i = 0; i < 12; ++i) {
     std::istringstream in(lines[body + 8 + i]);
@@ -253,13 +259,7 @@ TEST_F(SceneOutput, CellsPlyCarriesEveryValueExactly) {
   EXPECT_EQ(header, expected);
   const std::size_t body = static_cast<std::size_t>(end - lines.begin()) + 1;
   ASSERT_EQ(lines.size(), body + 8 + 12);
-  std::vector<Vec3> vertices;
-  for (std::size_t k = 0; k < 8; ++k) {
-    std::istringstream v(lines[body + k]);
-    Vec3 p;
-    v >> p.x() >> p.y() >> p.z();
-    vertices.push_back(p);
-  }
+  const std::vector<Vec3> vertices = ply_vertices(lines, body, 8);
   for (std::size_t i = 0; i < 12; ++i) {
     std::istringstream face(lines[body + 8 + i]);
     int count, a[3], facet;
