@@ -21,6 +21,7 @@
 // Constrained_triangulation_plus_2 instead is printed on stderr at every crossing, not for users.
 #define CGAL_NO_CDT_2_WARNING
 #include "contact_removal.hpp"
+#include "canonical_diagonals.hpp"
 #include "t_junctions.hpp"
 
 #include <CGAL/Bbox_3.h>
@@ -32,7 +33,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <functional>
+#include <limits>
 #include <map>
 #include <utility>
 
@@ -66,8 +69,9 @@ CGAL::Orientation projected_orientation(const TriangleMesh& mesh, const Tri& t, 
 double triangle_area(const Vec3& a, const Vec3& b, const Vec3& c) { return 0.5 * (b - a).cross(c - a).norm(); }
 
 /// The part of triangle `t` inside none of `covers` (coplanar with it), as triangles of the same
-/// orientation; new corners appended to `vertices` (shared by value through `made`).
-std::vector<Tri> remainder(const TriangleMesh& mesh, Index t, const std::vector<Index>& covers,
+/// orientation, their diagonals canonical (canonical_diagonals.hpp, corners within `tie` of a
+/// circle a tie); new corners appended to `vertices` (shared by value through `made`).
+std::vector<Tri> remainder(const TriangleMesh& mesh, Index t, const std::vector<Index>& covers, double tie,
                            std::vector<Vec3>& vertices, std::map<std::array<double, 3>, Index>& made) {
   const Tri& tr = mesh.triangles[at(t)];
   const Vec3 &a = mesh.vertices[at(tr[0])], &b = mesh.vertices[at(tr[1])], &c = mesh.vertices[at(tr[2])];
@@ -100,9 +104,8 @@ std::vector<Tri> remainder(const TriangleMesh& mesh, Index t, const std::vector<
   const EPoint3 ea(a.x(), a.y(), a.z()), eb(b.x(), b.y(), b.z()), ec(c.x(), c.y(), c.z());
   const EK::Plane_3 plane(ea, eb, ec);
   const int u_axis = (axis + 1) % 3, w_axis = (axis + 2) % 3;
-  const auto corner = [&](const CDT::Vertex_handle& h) -> Index {
-    if (h->info().v != kNone) return h->info().v;  // of t or of a covering triangle (coplanar)
-    // A crossing of two outlines: lift (x_u, x_w) to the plane, exactly, then round once.
+  // A crossing of two outlines: (x_u, x_w) lifted to the plane, exactly, then rounded once.
+  const auto lifted = [&](const CDT::Vertex_handle& h) {
     const EK::FT& xu = h->point().x();
     const EK::FT& xw = h->point().y();
     std::array<EK::FT, 3> coeff = {plane.a(), plane.b(), plane.c()};
@@ -115,6 +118,40 @@ std::vector<Tri> remainder(const TriangleMesh& mesh, Index t, const std::vector<
     key[at(axis)] = CGAL::to_double(CGAL::exact(xa));
     key[at(u_axis)] = CGAL::to_double(CGAL::exact(xu));
     key[at(w_axis)] = CGAL::to_double(CGAL::exact(xw));
+    return key;
+  };
+  // The diagonals by the plane's own metric, not the projection's (canonical_diagonals.hpp): in the
+  // orthonormal frame (u3, w3) of t's plane; ranked by input vertex number, crossings last.
+  const Vec3 u3 = (b - a).normalized(), w3 = n.normalized().cross(u3);
+  const auto place = [&](const CDT::Vertex_handle& h) {
+    Vec3 x;
+    if (h->info().v != kNone) {
+      x = mesh.vertices[at(h->info().v)];
+    } else {
+      const std::array<double, 3> key = lifted(h);
+      x = Vec3(key[0], key[1], key[2]);
+    }
+    return Eigen::Vector2d((x - a).dot(u3), (x - a).dot(w3));
+  };
+  // A crossing within the tie of an input corner (an outline through a corner, crossed an ulp off
+  // it in a rotated frame) ranks as that corner.
+  std::map<CDT::Vertex_handle, std::int64_t> ranks;
+  for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) {
+    std::int64_t r = std::numeric_limits<std::int64_t>::max();
+    if (v->info().v != kNone) {
+      r = v->info().v;
+    } else {
+      const Eigen::Vector2d x = place(v);
+      for (auto w = cdt.finite_vertices_begin(); w != cdt.finite_vertices_end(); ++w)
+        if (w->info().v != kNone && (place(w) - x).norm() <= tie) r = std::min<std::int64_t>(r, w->info().v);
+    }
+    ranks.emplace(v, r);
+  }
+  const auto rank = [&](const CDT::Vertex_handle& h) { return ranks.at(h); };
+  canonical_diagonals(cdt, place, rank, tie);
+  const auto corner = [&](const CDT::Vertex_handle& h) -> Index {
+    if (h->info().v != kNone) return h->info().v;  // of t or of a covering triangle (coplanar)
+    const std::array<double, 3> key = lifted(h);
     const auto [it, fresh] = made.emplace(key, static_cast<Index>(vertices.size()));
     if (fresh) vertices.emplace_back(key[0], key[1], key[2]);
     return it->second;
@@ -211,7 +248,7 @@ CutMesh cut_covered(const TriangleMesh& mesh, const std::vector<std::vector<Inde
       out.origin.push_back(static_cast<Index>(t));
       continue;
     }
-    const std::vector<Tri> rest = remainder(mesh, static_cast<Index>(t), covers[t], vertices, made);
+    const std::vector<Tri> rest = remainder(mesh, static_cast<Index>(t), covers[t], sliver, vertices, made);
     const Tri& tr = mesh.triangles[t];
     double kept = 0;
     for (const Tri& r : rest) {

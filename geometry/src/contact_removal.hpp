@@ -20,6 +20,13 @@ bool projections_overlap(const TriangleMesh& mesh, const Tri& t, const Tri& u, d
 /// size `size` (written_rounding.cpp).
 double rounding_tolerance(const ContactTolerance& tolerance, Index f, Index g, double pair_size);
 double largest_tolerance(const ContactTolerance& tolerance, double size);
+/// The distance within which a corner lies on another face's open edge (a T-junction,
+/// split_t_junctions): largest_tolerance, and beyond its cap 4 times the largest rounding of the
+/// numbers as written (a corner's and the edge line's roundings, sqrt(3) times each: 2 sqrt(3) < 4).
+/// Only open edges are joined, so that the cap, which keeps faces meant apart or crossing from
+/// being taken for a contact, is not needed here: a corner within the printing's reach of an open
+/// edge is that edge's, as the digits can say no more (written_rounding.cpp).
+double t_junction_tolerance(const ContactTolerance& tolerance, double size);
 
 /// Drops the vertices no triangle uses, keeping the order of the others (close_corners.cpp).
 void drop_unused_vertices(TriangleMesh& mesh);

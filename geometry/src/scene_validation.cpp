@@ -132,7 +132,20 @@ SceneValidationReport validate_scene(TriangleMesh& mesh) {
   // inserted into that edge, so that a surface that closes geometrically is closed. A closed
   // convex surface may then appear: the convex path again.
   const ContactTolerance tolerance(mesh, resolution);
-  report.t_junctions_split = split_t_junctions(mesh, nullptr, largest_tolerance(tolerance, diameter(mesh)));
+  const double capped = largest_tolerance(tolerance, diameter(mesh));
+  const double t_tolerance = t_junction_tolerance(tolerance, diameter(mesh));
+  report.t_junctions_split = split_t_junctions(mesh, nullptr, capped);
+  if (t_tolerance > capped) {
+    // Printed too coarsely for the contact rules: a corner within the printing's reach of an open
+    // edge is still that edge's, said in a note with what more digits would settle.
+    const Sz coarse = split_t_junctions(mesh, nullptr, t_tolerance);
+    report.t_junctions_split += coarse;
+    if (coarse > 0)
+      report.notes.push_back(std::to_string(coarse) + (coarse == 1 ? " vertex lay" : " vertices lay") + " within " +
+                             sci(t_tolerance) + " of an open edge of another face, which the rounding of the "
+                             "coordinates as written can account for (more than 1e-4 of the scene's size): "
+                             "taken as on it; if they were meant apart, write the coordinates with more digits");
+  }
   if (report.t_junctions_split > 0) {
     const std::string split_note = std::to_string(report.t_junctions_split) +
                                    (report.t_junctions_split == 1 ? " vertex lay" : " vertices lay") +

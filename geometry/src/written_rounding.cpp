@@ -109,4 +109,10 @@ double largest_tolerance(const ContactTolerance& tolerance, double size) {
   return std::max(tolerance.resolution, std::min(8 * r, 1e-4 * size));
 }
 
+double t_junction_tolerance(const ContactTolerance& tolerance, double size) {
+  double r = 0;
+  for (double x : tolerance.rounding) r = std::max(r, x);
+  return std::max(largest_tolerance(tolerance, size), 4 * r);
+}
+
 }  // namespace panelrad::geometry::validation_detail
