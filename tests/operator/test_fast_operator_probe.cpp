@@ -62,8 +62,10 @@ void expect_probe_matches_whole(const Collocation& col, FastOptions o, int sampl
 }
 
 TEST(FastOperatorProbe, OccludedProbeMeasuresTheWholeOperatorsCheck) {
+  // Level 3: at level 2 the sampled rows' admissible clusters are all elements or clusters of
+  // four, taken as near entries.
   const Scene scene = occluded_scene();
-  const Collocation col(scene, 2);
+  const Collocation col(scene, 3);
   expect_probe_matches_whole(col, options(0.4, 4, scene_occluders(col.tree())), 16);
   expect_probe_matches_whole(col, options(0.3, 6, scene_occluders(col.tree())), 32);
 }

@@ -16,15 +16,8 @@ double pieces_form_factor(const Vec3& P, const Vec3& nP, const std::vector<Vec3>
   double sum = 0;
   std::uint32_t begin = 0;
   for (const std::uint32_t end : piece_end) {
-    // A convex piece (p_0 .. p_m-1) is the fan of triangles (p_0, p_k, p_k+1); the form factor is
-    // additive over them, each by the contour formula of quadrature::form_factor.
-    // A fan triangle of zero area (repeated or collinear corners of a clipped piece) adds nothing
-    // and is skipped: the contour formula needs edges of positive length.
-    for (std::uint32_t k = begin + 1; k + 1 < end; ++k) {
-      const Vec3 &a = points[begin], &b = points[k], &c = points[k + 1];
-      if ((b - a).cross(c - a).squaredNorm() == 0) continue;
-      sum += quadrature::form_factor(P, nP, a, b, c, nQ);
-    }
+    // A convex piece: one contour sum over its edges (quadrature::convex_polygon_form_factor).
+    sum += quadrature::convex_polygon_form_factor(P, nP, points.data() + begin, static_cast<int>(end - begin), nQ);
     begin = end;
   }
   return sum;

@@ -3,8 +3,10 @@
 // the walk of the cluster tree U (40) of the fast product, where each (P, cluster) pair is
 // classified by the scene's occluders (geometry/occluders.hpp) before admissibility (41):
 //   hidden   -> skipped with its subtree (its integral is 0);
-//   full     -> as on a convex surface: the far field (44)-(48) when admissible, else refined,
-//               and at the elements the near field (43) of NearFieldIntegrator;
+//   full     -> the far field (44)-(48) when admissible, else refined; the elements, admissible
+//               or not, and the admissible clusters of four elements by the near field (43) of
+//               NearFieldIntegrator (an entry of one value costs a product one term where a far
+//               pair costs T, and it is exact);
 //   partial  -> refined, the faces that meet its shaft becoming its children's candidates; at
 //               the elements the exact integral over the visible part: the closed-form
 //               point-to-polygon form factor of each convex piece.
@@ -199,9 +201,11 @@ void cover_visible(const geometry::ClusterTree& tree, const geometry::Occluders&
         // A cluster of four elements: their near entries (4 x 12 bytes, 4 products a row) cost
         // less than its far pair (an id and T coefficients, T terms a product) and are exact.
         for (Index child = 0; child < 4; ++child) near(4 * it.k + child, integrate_near(P, nP, tree.cluster(L, 4 * it.k + child)));
-      } else if (admissible) {
+      } else if (admissible && it.level < L) {
         far(it.level, it.k);
       } else if (it.level == L) {
+        // An element, admissible or not: its near entry (one value, one term a product) costs less
+        // than a far pair and is exact.
         near(it.k, integrate_near(P, nP, c));
       } else {
         for (Index child = 3; child >= 0; --child) s.stack.push_back({it.level + 1, 4 * it.k + child, 0, 0, true, false});

@@ -36,6 +36,13 @@ std::vector<double> monomial_moments_2d(const std::array<double, 2>& a,
 inline double form_factor(const Vec3& P, const Vec3& nP, const Vec3& a, const Vec3& b,
                           const Vec3& c, const Vec3& nQ);
 
+/// The same for a convex planar polygon of m corners, counter-clockwise about its unit normal nQ
+/// (a visible piece of an element): one contour sum over its m edges, where its fan of m - 2
+/// triangles would sum 3 (m - 2) edges, the fan's inner diagonals cancelling. Where P lies near an
+/// edge's line (the accurate path of form_factor), and for more than 16 corners, the fan's sum.
+/// Repeated or collinear corners add nothing.
+inline double convex_polygon_form_factor(const Vec3& P, const Vec3& nP, const Vec3* corners, int m, const Vec3& nQ);
+
 // ------------------------------------------------------------------------------------------------
 // Implementation of form_factor.
 //
@@ -99,23 +106,37 @@ inline double angle_over_distance(double D, double L, double den) {
 
 }  // namespace detail
 
-inline double form_factor(const Vec3& P, const Vec3& nP, const Vec3& a, const Vec3& b,
-                          const Vec3& c, const Vec3& nQ) {
-  double h = (P - a).dot(nQ);  // (P - Q).nQ for every Q of the plane
-  if (h == 0) return 0;        // paper 4.2, case (a): coplanar, exactly zero
-  const bool flip = (b - a).cross(c - a).dot(nQ) < 0;  // walk the edges counter-clockwise about nQ
-  const Vec3* V[4] = {&a, flip ? &c : &b, flip ? &b : &c, &a};
+namespace detail {
+
+/// The most corners of a polygon that convex_polygon_form_factor takes in one contour sum.
+inline constexpr int kMaxContourCorners = 16;
+
+/// The contour formula above over the m edges (V[k], V[k+1]) of a convex planar polygon, V[m] =
+/// V[0], counter-clockwise about its unit normal nQ, h = (P - V[0]).nQ != 0. When P lies near an
+/// edge's line (the accurate path), h and the e_k are recomputed by accurate_heights for a
+/// triangle (m = 3); for m > 3 the sum is not taken and false is returned (the caller sums the fan
+/// of triangles instead). An edge with no length in the plane adds nothing.
+inline bool contour_form_factor(const Vec3& P, const Vec3& nP, const Vec3* const* V, int m, const Vec3& nQ, double h,
+                                double& out) {
   const double nu = nP.dot(nQ);
-  double e[3], D[3], L[3], nPnk[3], s1[3], s2[3];
+  double e[kMaxContourCorners], D[kMaxContourCorners], L[kMaxContourCorners], nPnk[kMaxContourCorners],
+      s1[kMaxContourCorners], s2[kMaxContourCorners];
   bool near_edge = false;
-  for (int k = 0; k < 3; ++k) {
+  for (int k = 0; k < m; ++k) {
     // The edge taken in the plane: its corners lie in it only to rounding, a tilt of about
     // eps |V| / L out of it, which s1 and s2 would take in as h times the tilt (for a sliver's
     // edge of length 1e-11 a millionth of h, against an in-plane angle of that order).
     Vec3 E = *V[k + 1] - *V[k];
     E -= E.dot(nQ) * nQ;
     L[k] = E.norm();
-    if (!(L[k] > 0)) return 0;  // no length in the plane: the triangle has no area there
+    if (!(L[k] > 0)) {  // no length in the plane: a triangle has no area there, a polygon's edge adds nothing
+      if (m == 3) {
+        out = 0;
+        return true;
+      }
+      e[k] = D[k] = s1[k] = s2[k] = nPnk[k] = 0;
+      continue;
+    }
     const Vec3 tau = E / L[k];
     const Vec3 nk = tau.cross(nQ);  // outward in-plane normal of edge k
     const Vec3 w0 = *V[k] - P, w1 = *V[k + 1] - P;
@@ -127,16 +148,20 @@ inline double form_factor(const Vec3& P, const Vec3& nP, const Vec3& a, const Ve
     near_edge |= D[k] * kNearEdgeRatio < std::max(w0.cwiseAbs().maxCoeff(), w1.cwiseAbs().maxCoeff());
   }
   if (near_edge) {
-    detail::accurate_heights(P, *V[0], *V[1], *V[2], L, h, e);
-    if (h == 0) return 0;  // P in the plane after all
+    if (m != 3) return false;
+    accurate_heights(P, *V[0], *V[1], *V[2], L, h, e);
+    if (h == 0) {  // P in the plane after all
+      out = 0;
+      return true;
+    }
     for (int k = 0; k < 3; ++k) D[k] = std::sqrt(e[k] * e[k] + h * h);
   }
   const double h2 = h * h;
   double sum_t = 0, sum_n = 0, mag_n = 0;
   bool outside = false;
-  double g[3];
-  for (int k = 0; k < 3; ++k) {
-    g[k] = detail::angle_over_distance(D[k], L[k], D[k] * D[k] + s1[k] * s2[k]);
+  double g[kMaxContourCorners];
+  for (int k = 0; k < m; ++k) {
+    g[k] = L[k] > 0 ? angle_over_distance(D[k], L[k], D[k] * D[k] + s1[k] * s2[k]) : 0;
     sum_t += nPnk[k] * g[k];
     const double term = e[k] * g[k];
     sum_n += term;
@@ -149,7 +174,7 @@ inline double form_factor(const Vec3& P, const Vec3& nP, const Vec3& a, const Ve
     // (the tip of a sliver a few 1e-9 from the foot: angles off by 1e-7). There the direct sum
     // is kept: its terms are then as small as the sliver, and so is their rounding.
     double cancellation_free = 0, winding = 0;
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < m; ++k) {
       if (e[k] == 0) continue;
       const double ae = std::abs(e[k]);
       const double q = h2 / (D[k] + ae);  // D - |e|
@@ -163,7 +188,47 @@ inline double form_factor(const Vec3& P, const Vec3& nP, const Vec3& a, const Ve
     if (std::abs(winding) <= kWindingRounding) sum_n = cancellation_free;
   }
   constexpr double inv_two_pi = 0.15915494309189533577;  // 1/(2 pi)
-  return -(h * sum_t + nu * sum_n) * inv_two_pi;
+  out = -(h * sum_t + nu * sum_n) * inv_two_pi;
+  return true;
+}
+
+}  // namespace detail
+
+inline double form_factor(const Vec3& P, const Vec3& nP, const Vec3& a, const Vec3& b,
+                          const Vec3& c, const Vec3& nQ) {
+  const double h = (P - a).dot(nQ);  // (P - Q).nQ for every Q of the plane
+  if (h == 0) return 0;              // paper 4.2, case (a): coplanar, exactly zero
+  const bool flip = (b - a).cross(c - a).dot(nQ) < 0;  // walk the edges counter-clockwise about nQ
+  const Vec3* V[4] = {&a, flip ? &c : &b, flip ? &b : &c, &a};
+  double out = 0;
+  detail::contour_form_factor(P, nP, V, 3, nQ, h, out);
+  return out;
+}
+
+inline double convex_polygon_form_factor(const Vec3& P, const Vec3& nP, const Vec3* corners, int m, const Vec3& nQ) {
+  if (m < 3) return 0;
+  const auto fan = [&] {
+    double sum = 0;
+    for (int k = 1; k + 1 < m; ++k) {
+      const Vec3 &a = corners[0], &b = corners[k], &c = corners[k + 1];
+      if ((b - a).cross(c - a).squaredNorm() == 0) continue;
+      sum += form_factor(P, nP, a, b, c, nQ);
+    }
+    return sum;
+  };
+  if (m == 3 || m > detail::kMaxContourCorners) return fan();
+  const double h = (P - corners[0]).dot(nQ);
+  if (h == 0) return 0;  // paper 4.2, case (a)
+  // Walked counter-clockwise about nQ whichever way the corners are listed (the sign of twice the
+  // signed area, a sum of fan cross products).
+  double twice_area = 0;
+  for (int k = 1; k + 1 < m; ++k) twice_area += (corners[k] - corners[0]).cross(corners[k + 1] - corners[0]).dot(nQ);
+  if (twice_area == 0) return 0;
+  const Vec3* V[detail::kMaxContourCorners + 1];
+  for (int k = 0; k < m; ++k) V[k] = &corners[twice_area > 0 ? k : (m - k) % m];
+  V[m] = V[0];
+  double out = 0;
+  return detail::contour_form_factor(P, nP, V, m, nQ, h, out) ? out : fan();
 }
 
 }  // namespace panelrad::quadrature
