@@ -122,31 +122,33 @@ std::vector<Tri> remainder(const TriangleMesh& mesh, Index t, const std::vector<
   };
   // The diagonals by the plane's own metric, not the projection's (canonical_diagonals.hpp): in the
   // orthonormal frame (u3, w3) of t's plane; ranked by input vertex number, crossings last.
+  // Each corner placed once (a crossing's exact lift is costly), before the flips look them up.
   const Vec3 u3 = (b - a).normalized(), w3 = n.normalized().cross(u3);
-  const auto place = [&](const CDT::Vertex_handle& h) {
+  std::map<CDT::Vertex_handle, Eigen::Vector2d> places;
+  for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) {
     Vec3 x;
-    if (h->info().v != kNone) {
-      x = mesh.vertices[at(h->info().v)];
+    if (v->info().v != kNone) {
+      x = mesh.vertices[at(v->info().v)];
     } else {
-      const std::array<double, 3> key = lifted(h);
+      const std::array<double, 3> key = lifted(v);
       x = Vec3(key[0], key[1], key[2]);
     }
-    return Eigen::Vector2d((x - a).dot(u3), (x - a).dot(w3));
-  };
+    places.emplace(v, Eigen::Vector2d((x - a).dot(u3), (x - a).dot(w3)));
+  }
   // A crossing within the tie of an input corner (an outline through a corner, crossed an ulp off
   // it in a rotated frame) ranks as that corner.
   std::map<CDT::Vertex_handle, std::int64_t> ranks;
-  for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) {
+  for (const auto& [v, x] : places) {
     std::int64_t r = std::numeric_limits<std::int64_t>::max();
     if (v->info().v != kNone) {
       r = v->info().v;
     } else {
-      const Eigen::Vector2d x = place(v);
-      for (auto w = cdt.finite_vertices_begin(); w != cdt.finite_vertices_end(); ++w)
-        if (w->info().v != kNone && (place(w) - x).norm() <= tie) r = std::min<std::int64_t>(r, w->info().v);
+      for (const auto& [w, y] : places)
+        if (w->info().v != kNone && (y - x).norm() <= tie) r = std::min<std::int64_t>(r, w->info().v);
     }
     ranks.emplace(v, r);
   }
+  const auto place = [&](const CDT::Vertex_handle& h) { return places.at(h); };
   const auto rank = [&](const CDT::Vertex_handle& h) { return ranks.at(h); };
   canonical_diagonals(cdt, place, rank, tie);
   const auto corner = [&](const CDT::Vertex_handle& h) -> Index {

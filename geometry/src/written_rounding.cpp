@@ -103,16 +103,23 @@ std::string more_digits_hint(double rounding, double distance, double roundings,
          "significant digits keep each double exactly)";
 }
 
-double largest_tolerance(const ContactTolerance& tolerance, double size) {
+namespace {
+
+/// The largest rounding of any face's numbers as written.
+double largest_rounding(const ContactTolerance& tolerance) {
   double r = 0;
   for (double x : tolerance.rounding) r = std::max(r, x);
-  return std::max(tolerance.resolution, std::min(8 * r, 1e-4 * size));
+  return r;
+}
+
+}  // namespace
+
+double largest_tolerance(const ContactTolerance& tolerance, double size) {
+  return std::max(tolerance.resolution, std::min(8 * largest_rounding(tolerance), 1e-4 * size));
 }
 
 double t_junction_tolerance(const ContactTolerance& tolerance, double size) {
-  double r = 0;
-  for (double x : tolerance.rounding) r = std::max(r, x);
-  return std::max(largest_tolerance(tolerance, size), 4 * r);
+  return std::max(largest_tolerance(tolerance, size), 4 * largest_rounding(tolerance));
 }
 
 }  // namespace panelrad::geometry::validation_detail
